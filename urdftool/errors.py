@@ -78,7 +78,9 @@ class PackageNotFound(UrdftoolError):
     ``unchecked`` says what is not checked for want of it: the robot (a ``$(find)``: it is
     not expanded) or a mesh (``package://``: the robot is checked without it). ``declared_by``:
     the package whose package.xml declares it as a dependency (installed wherever that package
-    is built, a question of the workspace, not of the file naming it), or None. ``repeated``:
+    is built, a question of the workspace, not of the file naming it), or None; ``manifest``:
+    the file that package's manifest is (``package.xml``, or rosbuild's ``manifest.xml``, whose
+    dependencies are ``<depend package="NAME"/>``). ``repeated``:
     the part of its message from "; looked in: " to its end (where it looked, how to pass it),
     which every file or mesh naming the package says again, ``("searched", text, name)``
     (:attr:`urdftool.diagnostics.Finding.repeated`)."""
@@ -86,8 +88,10 @@ class PackageNotFound(UrdftoolError):
     ROBOT = "the robot is not expanded, so not checked"
 
     def __init__(self, name: str, searched: list[str], declared_by: str | None = None,
-                 undeclared_by: str | None = None, close: tuple = (), unchecked: str = ROBOT):
+                 undeclared_by: str | None = None, close: tuple = (), unchecked: str = ROBOT,
+                 manifest: str = "package.xml"):
         self.name = name
+        self.manifest = manifest
         self.searched = searched
         self.declared_by = declared_by
         self.close = tuple(close)  # the packages found whose names are close to this one
@@ -98,17 +102,18 @@ class PackageNotFound(UrdftoolError):
         hint = ("did you mean " + " or ".join(f"'{other}'" for other in self.close) + "? "
                 if self.close else "")
         if declared_by:
-            said = (f"package '{name}' not found: the package.xml of '{declared_by}' declares "
+            said = (f"package '{name}' not found: the {manifest} of '{declared_by}' declares "
                     f"it as a dependency, which is not installed here: {unchecked} (nothing in "
                     "it is known to be wrong)")
             searched = (f"; looked in: {where}. Pass --package {name}=PATH, set "
                         "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH, or install the dependencies "
                         "(rosdep install --from-paths . --ignore-src)")
         elif undeclared_by:
-            said = (f"package '{name}' not found, and the package.xml of '{undeclared_by}' does "
+            tag = f'<depend package="{name}"/>' if manifest == "manifest.xml" else \
+                f"<exec_depend>{name}</exec_depend>"
+            said = (f"package '{name}' not found, and the {manifest} of '{undeclared_by}' does "
                     f"not declare it, so rosdep would not install it: {hint}if it is another "
-                    f"repository's, add <exec_depend>{name}</exec_depend>; not installed here, "
-                    f"{unchecked}")
+                    f"repository's, add {tag}; not installed here, {unchecked}")
             searched = (f"; looked in: {where}. Pass --package {name}=PATH or set "
                         "ROS_PACKAGE_PATH or AMENT_PREFIX_PATH")
         else:
@@ -118,12 +123,13 @@ class PackageNotFound(UrdftoolError):
         self.repeated = (("searched", searched, name),)
 
     def declared(self, owner: str | None, declares: bool = True,
-                 unchecked: str | None = None) -> "PackageNotFound":
-        """The same error, said of a package that ``owner``'s package.xml depends on, or (not
-        ``declares``) does not (no owner: said of no package.xml), and of ``unchecked``."""
+                 unchecked: str | None = None, manifest: str = "package.xml") -> "PackageNotFound":
+        """The same error, said of a package that ``owner``'s ``manifest`` (package.xml, or
+        rosbuild's manifest.xml) depends on, or (not ``declares``) does not (no owner: said of
+        no package.xml), and of ``unchecked``."""
         return PackageNotFound(self.name, self.searched, owner if declares else None,
                                None if declares else owner, self.close,
-                               unchecked or self.unchecked)
+                               unchecked or self.unchecked, manifest)
 
 LISTED = 12  # items a list in a message or a report shows; more are counted
 MAX_SIMILAR_NAME = 128  # [characters] longer names are neither looked up nor suggested

@@ -314,7 +314,8 @@ def test_a_package_manifest_is_read_once_per_run_and_answers_as_read_each_time(t
                          packages.manifest_text(f)) for f in folders] == alone
             assert {key for kind, key in record.entries if kind == READ} >= \
                 {str(tmp_path / n / "package.xml") for n in ("named", "unnamed", "dots")}
-    assert sorted(reads) == sorted(set(reads)) and len(reads) == len(folders)
+    # (a folder with no readable package.xml: its rosbuild manifest.xml asked for too, once)
+    assert sorted(reads) == sorted(set(reads)) and len(reads) == len(folders) + 3
 
 
 def test_the_shallowest_package_of_a_name_wins_below_a_root(tmp_path):
@@ -414,3 +415,75 @@ def test_a_walk_is_taken_only_from_a_tree_listing_all_it_lists(tmp_path):
                                            ("package.xml|[!.]*/", 12, skip),  # deeper
                                            ("package.xml|[!.]*/", 7, frozenset())):
             assert tree_made(tmp_path, pattern, depth, other_skip) is None, pattern
+
+
+def make_rosbuild_package(folder, *depends):
+    """A rosbuild package (ROS 1): a manifest.xml, no package.xml, its name its folder's."""
+    folder.mkdir(parents=True, exist_ok=True)
+    tags = "".join(f'  <depend package="{name}" />\n' for name in depends)
+    (folder / "manifest.xml").write_text(
+        f'<package>\n  <description brief="x">x</description>\n{tags}'
+        '  <!-- <depend package="hidden"/> -->\n  <depend stack="a_stack"/>\n</package>\n')
+    return folder
+
+
+def test_a_rosbuild_manifest_makes_its_folder_a_package_of_its_folder_s_name(tmp_path):
+    """rospack takes a folder holding manifest.xml (and no package.xml) as the package of the
+    folder's name: found walking up, below the repository, by package_of and packages_below;
+    its <depend package=.../> are its dependencies; package.xml wins beside one."""
+    from urdftool.description import packages
+    from urdftool.description.run_memo import one_run
+
+    (tmp_path / ".git").mkdir()
+    here = make_rosbuild_package(tmp_path / "src" / "cool5000_description", "gazebo", "urdf")
+    (here / "robots").mkdir()
+    other = make_rosbuild_package(tmp_path / "vendor" / "deep" / "arm_meshes")
+    both = make_rosbuild_package(tmp_path / "both" / "folder_name", "rosbuild_only")
+    make_package(both, "catkin_name")
+    resolver = PackageResolver(start=here / "robots", environ={})
+    assert resolver.find("cool5000_description") == here
+    assert resolver.find("arm_meshes") == other
+    assert resolver.find("catkin_name") == both
+    with pytest.raises(PackageNotFound):
+        resolver.find("folder_name")
+    assert packages.package_of(here / "robots" / "r.urdf") == here
+    assert packages.declared_dependencies(here) == {"gazebo", "urdf"}
+    assert packages.declared_dependencies(both) == set()
+    assert packages.declaring_package(here / "robots" / "r.urdf", "gazebo") == \
+        ("cool5000_description", True, "manifest.xml")
+    assert packages.declaring_package(both / "r.urdf", "rosbuild_only") == \
+        ("catkin_name", False, "package.xml")
+    with one_run():
+        assert packages.packages_below(tmp_path) == {
+            "cool5000_description": here, "catkin_name": both, "arm_meshes": other}
+
+
+def test_a_rosbuild_package_is_built_by_ros_1(tmp_path):
+    """ROS 2 has no rosbuild: a manifest.xml package's build tool says ROS 1."""
+    from urdftool.description.packages import build_tools
+    from urdftool.description.ros_version import package_build_tool
+
+    (tmp_path / ".git").mkdir()
+    folder = make_rosbuild_package(tmp_path / "bot_description")
+    path = folder / "urdf" / "bot.urdf"
+    assert build_tools(path) == ((1, "rosbuild", folder / "manifest.xml"),)
+    assert package_build_tool(str(path))[0] == 1
+
+
+def test_a_rosbuild_package_s_messages_name_its_manifest_xml_and_u019_leaves_it(run_cli, tmp_path):
+    """A package a rosbuild package's file needs and its manifest.xml does not declare: U006
+    names the manifest.xml and its <depend package=.../>; U019 (binary installs) leaves a
+    rosbuild package, built from source only, alone."""
+    (tmp_path / ".git").mkdir()
+    rosbuild = make_rosbuild_package(tmp_path / "rb_description")
+    make_package(tmp_path / "sibling", "sibling")
+    (rosbuild / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '<xacro:property name="p" value="$(find sibling)"/>\n'
+        '<xacro:include filename="$(find missing_pkg)/x.xacro"/>\n<link name="b"/>\n</robot>\n')
+    result = run_cli("check", "--format", "json", "--select", "U019,U006", "--no-cache",
+                     rosbuild / "robot.urdf.xacro")
+    found = json.loads(result.stdout)["diagnostics"]
+    assert [(d["line"], d["code"]) for d in found] == [(3, "U006")], result.output
+    assert "the manifest.xml of 'rb_description' does not declare it" in found[0]["message"]
+    assert '<depend package="missing_pkg"/>' in found[0]["message"]

@@ -62,7 +62,8 @@ from pathlib import Path
 from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
 from urdftool.description import runtime as launched
 from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_yaml
-from urdftool.description.files import inside, kind_of, listing, read_regular, real_path, walk
+from urdftool.description.files import MANIFESTS, inside, kind_of, listing, read_regular, \
+    real_path, walk
 from urdftool.description.launch import named as launch_named
 from urdftool.description.packages import SKIP_DIRS, containment_root
 from urdftool.description.urdf import ROBOT_GLOB
@@ -326,13 +327,13 @@ def _search_folders(robot_path: Path) -> tuple[Path, ...]:
 
 def _package(base: Path, root: Path) -> Path | None:
     """The ROS package holding a robot in ``base``: the folder above a urdf/-like folder, else the
-    nearest folder at or above ``base`` holding a package.xml (inside ``root``)."""
+    nearest folder at or above ``base`` holding a package.xml or manifest.xml (inside ``root``)."""
     if base.name in URDF_FOLDERS and base != root and inside(base.parent, root):
         return base.parent
     for folder in [base, *base.parents]:
         if not inside(folder, root):
             return None
-        if kind_of(folder / "package.xml") == "file":
+        if any(kind_of(folder / name) == "file" for name in MANIFESTS):
             return folder
         if folder == root:
             return None

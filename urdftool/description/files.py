@@ -586,11 +586,18 @@ def repository_root(start: Path) -> Path | None:
 @per_run
 def enclosing_root(folder: Path) -> Path | None:
     """The folder whose files a stranger may have written, holding ``folder``: its repository
-    (:func:`repository_root`); without one, the nearest folder above holding a package.xml;
-    None when there is neither (the user's own folders)."""
+    (:func:`repository_root`); without one, the nearest folder above holding a package's
+    manifest (:data:`MANIFESTS`); None when there is neither (the user's own folders)."""
     folder = Path(os.path.abspath(folder))
     return repository_root(folder) or next(
-        (f for f in [folder, *folder.parents] if kind_of(f / "package.xml") == "file"), None)
+        (f for f in [folder, *folder.parents]
+         if any(kind_of(f / name) == "file" for name in MANIFESTS)), None)
+
+
+# The files that make a folder a ROS package, as rospack reads them: package.xml (catkin's,
+# ament's), else manifest.xml (a rosbuild package, ROS 1's only: rospack, roslaunch's $(find)
+# and resource_retriever's package:// find it by its folder's name). The one list of them.
+MANIFESTS = ("package.xml", "manifest.xml")
 
 
 # ---- a record compared with the disk ----------------------------------------------------

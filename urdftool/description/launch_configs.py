@@ -36,7 +36,8 @@ import sys
 from pathlib import Path
 
 from urdftool.description.documents import read_text
-from urdftool.description.files import inside, kind_of, listing, real_path, tree, tree_made, walk
+from urdftool.description.files import MANIFESTS, inside, kind_of, listing, real_path, tree, \
+    tree_made, walk
 from urdftool.description.launch import (LAUNCH_TEST_ENTRY, MAX_LAUNCH_SIZE, MAX_TEXT, Arg,
                                          Condition, Description, Include, LaunchFile, ParamFile,
                                          Start, Value, is_launch_file, is_launch_name,
@@ -661,15 +662,18 @@ def _launch_files(root: Path, tests: bool) -> tuple[list[Path], bool]:
 def launch_file_packages(root: Path) -> dict[str, str | None]:
     """Each launch file of ``root`` (named as :func:`launch_files` names it) -> the folder of
     the package holding it (the nearest folder at or above its own, up to ``root``, whose
-    listing names a package.xml), None in no package; from the launch-file walk's listings."""
+    listing names a package.xml or manifest.xml), None in no package; from the launch-file
+    walk's listings."""
     paths = launch_files(root)[0]
-    listings = tree_made(root, "package.xml|[!.]*/", MAX_WALK_DEPTH + 1, SKIP_DIRS) or {}
+    listings = tree_made(root, "package.xml|manifest.xml|[!.]*/", MAX_WALK_DEPTH + 1,
+                         SKIP_DIRS) or {}
     top, holders, found = os.fspath(root), {}, {}
 
     def holder(folder: str) -> str | None:
         if folder not in holders:
-            entries = listings[folder] if folder in listings else listing(folder, "package.xml")
-            if any(name == "package.xml" for name, _ in entries):
+            entries = listings[folder] if folder in listings else listing(
+                folder, "package.xml|manifest.xml")
+            if any(name in MANIFESTS for name, _ in entries):
                 holders[folder] = folder
             else:
                 parent = os.path.dirname(folder)

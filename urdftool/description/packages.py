@@ -6,6 +6,8 @@ package, or has it as a child), then package.xml files below the repository root
 folder holding ``.git``). A folder or package.xml in the repository that is a symbolic link
 leading outside it is not a package: it is not read, and the not-found message says so. Without
 a ``.git`` above the input there is no repository to keep to, and the walk goes up to ``/``.
+A folder holding a manifest.xml and no package.xml is a rosbuild package (ROS 1's), as rospack
+takes it: named by its folder (:data:`~urdftool.description.files.MANIFESTS`).
 
 A path below a package found (``$(find NAME)/urdf/x.xacro``, ``package://NAME/meshes/x.stl``)
 names the package's installed ``share/NAME``: when the source folder has no such file, the
@@ -23,8 +25,8 @@ from pathlib import Path
 
 from urdftool.diagnostics import line_start, lines_between
 from urdftool.errors import PackageNotFound, close_names
-from urdftool.description.files import enclosing_root, environ, inside, kind_of, listing, \
-    read_regular, real_path, repository_root, resolved, tree_made, walk
+from urdftool.description.files import MANIFESTS, enclosing_root, environ, inside, kind_of, \
+    listing, read_regular, real_path, repository_root, resolved, tree_made, walk
 from urdftool.description.install_layout import layout
 from urdftool.description.run_memo import per_run
 from urdftool.records import Frozen
@@ -38,16 +40,28 @@ _MAX_MANIFEST = 1024 * 1024  # [bytes]
 
 
 def package_name(folder: Path, root: Path | None = None) -> str | None:
-    """The ``<name>`` a folder's package.xml declares, or None when it has none (or, given
-    ``root``, when the package.xml leads outside ``root``: then it is not opened)."""
-    manifest = folder / "package.xml"
-    if root is not None and not inside(manifest, root):
+    """The ``<name>`` a folder's package.xml declares (the folder's name for a rosbuild
+    manifest.xml), or None when it has no manifest (or, given ``root``, when its manifest
+    leads outside ``root``: then it is not opened)."""
+    found = _manifest_of(folder, root)
+    if found is None:
         return None
-    text = manifest_text(folder)
-    if text is None:
-        return None
-    match = _NAME.search(text)  # comments removed: a commented-out <name> is not the name
+    match = _NAME.search(found[1]) if found[0] == "package.xml" else None
     return match.group(1).decode("utf-8", "replace") if match else folder.name
+
+
+def _manifest_of(folder: Path, root: Path | None = None) -> tuple[str, bytes] | None:
+    """(file name, text, comments removed) of the manifest of ``folder``: its package.xml,
+    else its manifest.xml (:data:`MANIFESTS`); None when neither can be read, or, given
+    ``root``, when the first present leads outside ``root`` (not opened)."""
+    for name in MANIFESTS:
+        path = folder / name
+        if root is not None and not inside(path, root):
+            return None
+        data = _manifest(os.fspath(path))
+        if data is not None:
+            return name, _COMMENT.sub(b"", data)
+    return None
 
 
 @per_run
@@ -188,7 +202,7 @@ class PackageResolver:
                     if kind_of(candidate / "package.xml"):
                         self._links_out.append(candidate)
                     continue
-                if package_name(candidate) == name:
+                if package_name(candidate, root) == name:
                     return candidate
         return None
 
@@ -235,6 +249,8 @@ class PackageResolver:
 _DEPEND = re.compile(rb"<(?:depend|build_depend|build_export_depend|exec_depend|run_depend|"
                      rb"test_depend|doc_depend|buildtool_depend|buildtool_export_depend)"
                      rb"(?:\s[^>]*)?>\s*([^<\s]+)\s*</")
+# rosbuild's manifest.xml: <depend package="NAME"/> (a <depend stack=...> names a stack, no package)
+_ROSBUILD_DEPEND = re.compile(rb"<depend\s[^>]*?\bpackage\s*=\s*[\"']\s*([^\"'\s]+)\s*[\"']")
 _COMMENT = re.compile(rb"<!--.*?-->", re.S)
 # A package named literally in robot files: $(find NAME), package://NAME/ (not ${...} names);
 # and the tags of xacro's conditional blocks (unprefixed as ROS 1's xacro took them too).
@@ -248,32 +264,44 @@ _CONDITIONAL = (b"<if", b"/if", b":if", b"<unless", b"/unless", b":unless")
 
 def package_of(path) -> Path | None:
     """The folder of the ROS package holding the file ``path``: the nearest folder at or above
-    the file's own folder holding a package.xml, without leaving its containment root; None
-    when there is none. Links are not followed (the package is where the file is named)."""
+    the file's own folder holding a package.xml or a manifest.xml (:data:`MANIFESTS`), without
+    leaving its containment root; None when there is none. Links are not followed (the package
+    is where the file is named)."""
     start = Path(os.path.abspath(path)).parent
     root = containment_root(start)
     for folder in [start, *start.parents]:
-        if kind_of(folder / "package.xml") == "file" and inside(folder / "package.xml", root):
+        if any(kind_of(folder / name) == "file" and inside(folder / name, root)
+               for name in MANIFESTS):
             return folder
         if folder == root:
             return None
     return None
 
 
+def manifest_file(folder: Path) -> str | None:
+    """The file name of the manifest of ``folder`` (``package.xml``, else rosbuild's
+    ``manifest.xml``), None when it has no readable one."""
+    found = _manifest_of(folder)
+    return None if found is None else found[0]
+
+
 def manifest_text(folder: Path) -> bytes | None:
-    """The package.xml of ``folder``, comments removed; None when it cannot be read."""
-    data = _manifest(os.fspath(folder / "package.xml"))
-    return None if data is None else _COMMENT.sub(b"", data)
+    """The manifest (package.xml, else rosbuild's manifest.xml) of ``folder``, comments
+    removed; None when it cannot be read."""
+    found = _manifest_of(folder)
+    return None if found is None else found[1]
 
 
 def declared_dependencies(folder: Path) -> frozenset[str] | None:
     """Every package the package.xml of ``folder`` names in a dependency tag (``<depend>``,
-    ``<exec_depend>``, ``<run_depend>``, ``<build_depend>``, ...), whatever its ``condition``;
-    None when there is no readable package.xml."""
-    text = manifest_text(folder)
-    if text is None:
+    ``<exec_depend>``, ``<run_depend>``, ``<build_depend>``, ...), whatever its ``condition``
+    (of a rosbuild manifest.xml, each ``<depend package="NAME"/>``); None when there is no
+    readable manifest."""
+    found = _manifest_of(folder)
+    if found is None:
         return None
-    return frozenset(name.decode("utf-8", "replace") for name in _DEPEND.findall(text))
+    pattern = _DEPEND if found[0] == "package.xml" else _ROSBUILD_DEPEND
+    return frozenset(name.decode("utf-8", "replace") for name in pattern.findall(found[1]))
 
 
 _CATKIN = re.compile(rb"<buildtool_depend[^>]*>\s*(catkin)\s*<")
@@ -282,11 +310,14 @@ _CONDITIONED = re.compile(rb"<buildtool_depend[^>]*condition=")
 
 
 def build_tools(path) -> tuple[tuple[int, str, Path], ...]:
-    """(ROS version, build tool, its package.xml) for each build tool the package.xml above
+    """(ROS version, build tool, its manifest) for each build tool the package.xml above
     ``path`` names (comments removed): none when a build tool is conditioned (a package built
-    by both ROS versions)."""
+    by both ROS versions); ROS 1's rosbuild for a manifest.xml (ROS 2 has no rosbuild)."""
     folder = package_of(path)
-    data = manifest_text(folder) if folder is not None else None
+    found = _manifest_of(folder) if folder is not None else None
+    if found is not None and found[0] == "manifest.xml":
+        return ((1, "rosbuild", Path(folder) / "manifest.xml"),)
+    data = found[1] if found is not None else None
     if data is None or _CONDITIONED.search(data):
         return ()
     found = ((version, pattern.search(data)) for version, pattern in ((1, _CATKIN), (2, _AMENT)))
@@ -294,16 +325,18 @@ def build_tools(path) -> tuple[tuple[int, str, Path], ...]:
                   Path(folder) / "package.xml") for version, match in found if match)
 
 
-def declaring_package(path, package: str) -> tuple[str | None, bool]:
+def declaring_package(path, package: str) -> tuple[str | None, bool, str]:
     """(the name of the package holding the file ``path``, whether its package.xml declares
-    ``package`` as a dependency); (None, False) outside a package. A package not found that
+    ``package`` as a dependency, the manifest's file name: ``package.xml``, or rosbuild's
+    ``manifest.xml``); (None, False, "package.xml") outside a package. A package not found that
     it declares is one not installed here, the environment's; one it does not declare is a
     misspelt name or a dependency rosdep would not install (xacro's ``$(find)``, a mesh's
     ``package://``)."""
     folder = package_of(path) if path else None
-    if folder is None:
-        return None, False
-    return package_name(folder), package in (declared_dependencies(folder) or ())
+    found = _manifest_of(folder) if folder is not None else None
+    if found is None:
+        return None, False, "package.xml"
+    return package_name(folder), package in (declared_dependencies(folder) or ()), found[0]
 
 
 def package_references(data: bytes) -> list[tuple[int, int, str]]:
@@ -366,13 +399,13 @@ def package_uri_parts(uri: str) -> tuple[str, str]:
 
 @per_run
 def packages_below(root: Path) -> dict[str, Path]:
-    """Package name -> folder of each package.xml below ``root`` (its folders walked as
+    """Package name -> folder of each package.xml (or manifest.xml) below ``root`` (its folders walked as
     :class:`PackageResolver` scans them: bounded, links not followed; the first of a name
     wins). Launch files' ``$(find pkg)`` resolve only to these: never outside the repository."""
     found: dict[str, Path] = {}
     for folder, regular in _package_folders(root):
         folder = Path(folder)
-        # (a name: its package.xml was read, as a regular file: the record holds that read);
+        # (a name: its manifest was read, as a regular file: the record holds that read);
         # one listed as a regular file (no link) of a folder walked is inside ``root``
         name = package_name(folder, None if regular else root)
         if name is not None:
@@ -380,12 +413,12 @@ def packages_below(root: Path) -> dict[str, Path]:
     return found
 
 
-_PACKAGE_WALK = "package.xml|[!.]*/"
+_PACKAGE_WALK = "package.xml|manifest.xml|[!.]*/"
 
 
 def _package_folders(root: Path) -> list[tuple[str, bool]]:
-    """(folder, whether its package.xml is listed as a regular file) for the folders below
-    ``root`` whose listing names a package.xml, breadth first, as
+    """(folder, whether its manifests are listed as regular files) for the folders below
+    ``root`` whose listing names a package.xml or manifest.xml, breadth first, as
     :func:`walk` lists them for package.xml (as _walk_dirs walks, each folder listed once for
     its subfolders and its package.xml): from the listings of the repository's launch-file
     walk when this run made it (:func:`~urdftool.description.files.tree_made`: the same
@@ -393,17 +426,18 @@ def _package_folders(root: Path) -> list[tuple[str, bool]]:
     depth, most = _MAX_SCAN_DEPTH + 1, _MAX_SCAN_DIRS + 1
     listings = tree_made(root, _PACKAGE_WALK, depth, SKIP_DIRS)
     if listings is None:
-        return [(folder, ("package.xml", "file") in entries) for folder, entries in walk(
+        return [(folder, regular) for folder, entries in walk(
             root, _PACKAGE_WALK, depth, SKIP_DIRS, breadth_first=True, most=most)
-                if any(name == "package.xml" for name, _ in entries)]
+                for regular in [_manifests_regular(entries)] if regular is not None]
     found, sep = [], os.sep
     pending, listed = deque([(os.fspath(root), 0)]), 0
     while pending:
         folder, level = pending.popleft()
         entries = listings[folder]
         listed += 1
-        if any(name == "package.xml" for name, _ in entries):
-            found.append((folder, ("package.xml", "file") in entries))
+        regular = _manifests_regular(entries)
+        if regular is not None:
+            found.append((folder, regular))
         if listed == most:
             break
         if entries and level + 1 < depth:
@@ -412,6 +446,13 @@ def _package_folders(root: Path) -> list[tuple[str, bool]]:
             pending.extend([(base + name, level) for name, kind in entries
                             if kind == "folder" and name not in SKIP_DIRS and name[:1] != "."])
     return found
+
+
+def _manifests_regular(entries) -> bool | None:
+    """Of a folder's listing: None when it names no manifest (:data:`MANIFESTS`), else whether
+    every manifest it names is a regular file."""
+    kinds = [kind for name, kind in entries if name in MANIFESTS]
+    return all(kind == "file" for kind in kinds) if kinds else None
 
 
 _EXPORT = re.compile(rb"<export\b[^>]*>(.*?)</export>", re.S)

@@ -4,7 +4,7 @@ Evidence (:func:`ros_versions`), each with the reason it is shown with:
 
 - the package.xml of the robot's package: ``catkin`` (ROS 1) or ``ament_cmake``/``ament_python``
   (ROS 2) as its build tool; a build tool under a ``condition=`` (a package built by both) says
-  nothing;
+  nothing; a rosbuild manifest.xml in its stead says ROS 1 (ROS 2 has no rosbuild);
 - ``<ros2_control>`` in the URDF: ROS 2 (ros2_control reads it; ROS 1's ros_control does not);
 - its controller YAML: ROS 2 with ``ros__parameters``, ROS 1 without (MoveIt's lists aside);
 - Gazebo's ros_control plugin: ``libgazebo_ros_control.so`` is ROS 1's,
@@ -120,8 +120,9 @@ def plugin_version(library: str) -> int | None:
 
 
 def package_evidence(path: str) -> tuple[Evidence, ...]:
-    """What the build tool of the package.xml above ``path`` says (comments removed): nothing
-    when a build tool is conditioned (a package built by both ROS versions)."""
+    """What the build tool of the package.xml (or rosbuild manifest.xml) above ``path`` says
+    (comments removed): nothing when a build tool is conditioned (a package built by both ROS
+    versions)."""
     return tuple(Evidence(version, f"its package builds with {tool} ({display_path(manifest)})",
                           "package") for version, tool, manifest in build_tools(path))
 

@@ -653,9 +653,10 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
         except PackageNotFound as error:
             from urdftool.description.packages import declaring_package
 
-            owner, declares = declaring_package(xacro.filestack[-1] if xacro.filestack else None,
-                                                package)
-            raise _PackageFailure(error.declared(owner, declares) if owner else error) from None
+            owner, declares, manifest = declaring_package(
+                xacro.filestack[-1] if xacro.filestack else None, package)
+            raise _PackageFailure(error.declared(owner, declares, manifest=manifest) if owner
+                                  else error) from None
         session.allow_root(found)
         return str(found)
 

@@ -125,9 +125,9 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
         if seen is None and kind_of(os.path.join(folder, package)) == "folder":
             seen = os.path.join(folder, package)
         if os.path.normpath(folder) == root or os.path.dirname(folder) == folder:
-            owner, declares = declaring_package(robot.path, package) if robot.path != "-" \
-                else (None, False)
-            error = error.declared(owner, declares)
+            owner, declares, manifest = declaring_package(robot.path, package) \
+                if robot.path != "-" else (None, False, "package.xml")
+            error = error.declared(owner, declares, manifest=manifest)
             lacking = f"; {seen} (no package.xml) does not hold '{tail}'" if seen else ""
             misspelt = any(_misspelling(package, close) for close in error.close or ())
             return MeshProblem("package", f"mesh '{uri}': {error}{lacking}"

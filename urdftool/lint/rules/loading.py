@@ -553,7 +553,8 @@ def undeclared_package_dependency(robot):
     package.xml declares come along, and the look-up fails there. Any dependency tag counts
     (``<depend>``, ``<exec_depend>``, ``<run_depend>``, ``<build_depend>``, ...), whatever its
     ``condition``. Each file read to build the robot is judged by the package.xml above it, in
-    the robot's repository only (installed packages are not the user's to fix), at the first
+    the robot's repository only (installed packages are not the user's to fix; nor a rosbuild
+    package, a manifest.xml, ROS 1's, built from source only), at the first
     place it names the package. Not judged: a use inside ``<xacro:if>``/``<xacro:unless>``
     (needed in some configurations only, such as a simulator's, often by a package that
     itself depends on this one), a name built by xacro (``$(find ${pkg})``), and a package
@@ -567,7 +568,8 @@ def undeclared_package_dependency(robot):
 
     from urdftool.description.files import inside
     from urdftool.description.packages import (containment_root, declared_dependencies,
-                                               package_name, package_of, package_references)
+                                               manifest_file, package_name, package_of,
+                                               package_references)
 
     if robot.path == "-" or not robot.files:
         return
@@ -577,7 +579,7 @@ def undeclared_package_dependency(robot):
             continue
         folder = package_of(file)
         declared = declared_dependencies(folder) if folder is not None else None
-        if declared is None:
+        if declared is None or manifest_file(folder) != "package.xml":
             continue
         own = package_name(folder)
         judged = set()
