@@ -841,3 +841,45 @@ def test_a_launch_file_is_told_from_a_launch_test_whatever_ends_its_lines(end):
             "def generate_launch_description():\n    pass\n").replace("\n", end)
     assert not is_launch_test(text)
     assert is_launch_test(text.replace("generate_launch", "other"))
+
+
+def test_nested_conditional_groups_of_each_form_need_both_conditions(tmp_path):
+    """A node in a group with a condition inside another group with one runs only when both
+    hold: Python's nested ``GroupAction(condition=...)``, XML's and YAML's nested
+    ``<group if>`` say the same, the outer condition first."""
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch.py": """
+from launch import LaunchDescription
+from launch.actions import GroupAction
+from launch.conditions import IfCondition
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+
+def generate_launch_description():
+    return LaunchDescription([
+        GroupAction([
+            GroupAction([Node(package="controller_manager", executable="spawner", arguments=["arm"])],
+                        condition=IfCondition(LaunchConfiguration("real"))),
+        ], condition=IfCondition(LaunchConfiguration("sim"))),
+    ])
+""", "p/launch/b.launch.xml": """<launch>
+      <group if="$(var sim)"><group if="$(var real)">
+        <node pkg="controller_manager" exec="spawner" args="arm"/>
+      </group></group>
+    </launch>""", "p/launch/c.launch.yaml": """launch:
+- group:
+    if: $(var sim)
+    children:
+    - group:
+        if: $(var real)
+        children:
+        - node: {pkg: controller_manager, exec: spawner, args: arm}
+"""})
+    found = {}
+    for configuration in launch_index(root).configurations:
+        for started in configuration.started:
+            found[configuration.top.path.name] = (started.when.certain, started.when.truth,
+                                                     tuple(sorted(started.when.free)),
+                                                     len(started.when.words))
+    assert len(found) == 3 and len(set(found.values())) == 1, found
+    certain, truth, free, words = found["a.launch.py"]
+    assert not certain and truth is None and free == ("real", "sim") and words == 2

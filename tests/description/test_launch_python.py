@@ -430,3 +430,52 @@ def test_a_python_launch_file_too_deep_for_the_parser_says_why():
     for text in ("x = " + "-" * 200_000 + "1\n", "x = " + "lambda: " * 3000 + "1\n"):
         launch = read_python_launch(Path("a.launch.py"), "a.launch.py", text)
         assert launch.problem == "not valid Python: nested too deeply for Python's parser"
+
+
+def test_a_node_in_nested_conditional_groups_carries_every_groups_condition(tmp_path):
+    """A ``GroupAction`` with a condition inside another: the node runs only when both hold,
+    the outer group's first (as ``<group if>`` nested in XML and YAML reads); a ``SetRemap``
+    in a conditional group keeps only its own condition (its group's are the node's)."""
+    root = _repo(tmp_path, {"q/package.xml": PACKAGE.format("q"), "q/launch/a.launch.py": """
+from launch import LaunchDescription
+from launch.actions import GroupAction
+from launch.conditions import IfCondition, UnlessCondition
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node, SetRemap
+
+def generate_launch_description():
+    return LaunchDescription([
+        GroupAction(actions=[
+            GroupAction(actions=[
+                SetRemap("a", "b"),
+                Node(package="controller_manager", executable="spawner", arguments=["arm"],
+                     condition=IfCondition(LaunchConfiguration("arm"))),
+            ], condition=UnlessCondition(LaunchConfiguration("fake"))),
+        ], condition=IfCondition(LaunchConfiguration("sim"))),
+    ])
+"""})
+    read = _read(root, "q/launch/a.launch.py")
+    [start] = [a for a in read.actions if isinstance(a, Start)]
+    assert [c.kind for c in start.when] == ["if", "unless", "if"]
+    assert [_text(c.value) for c in start.when] == ["<arg:sim>", "<arg:fake>", "<arg:arm>"]
+    assert [r.when for r in start.remaps] == [()]
+
+
+def test_a_set_remap_under_a_python_if_holds_under_its_test(tmp_path):
+    """A ``SetRemap`` appended under a Python ``if`` holds for the nodes after it only when
+    the test does."""
+    root = _repo(tmp_path, {"q/package.xml": PACKAGE.format("q"), "q/launch/a.launch.py": """
+from launch import LaunchDescription
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node, SetRemap
+
+def generate_launch_description():
+    actions = []
+    if LaunchConfiguration("ns") == "arm":
+        actions.append(SetRemap("a", "b"))
+    actions.append(Node(package="q", executable="move_group"))
+    return LaunchDescription(actions)
+"""})
+    read = _read(root, "q/launch/a.launch.py")
+    [start] = [a for a in read.actions if isinstance(a, Start)]
+    assert start.when == () and [[c.kind for c in r.when] for r in start.remaps] == [["equals"]]

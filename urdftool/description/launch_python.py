@@ -10,7 +10,8 @@ that make launch actions read into :class:`~urdftool.description.launch.LaunchFi
   ``ExecuteProcess(cmd=[...])``; parameter files given as paths, ``ParameterFile(path,
   allow_substs=True)``;
 - ``IncludeLaunchDescription(PythonLaunchDescriptionSource(path), launch_arguments=...)``;
-- ``GroupAction(actions, condition=...)``, ``TimerAction``, ``RegisterEventHandler``;
+- ``GroupAction(actions, condition=...)`` (its condition held by every action inside it, in
+  nested groups too), ``TimerAction``, ``RegisterEventHandler``;
   ``SetRemap(src, dst)``, for the nodes and includes after it in its group;
 - robot descriptions: ``Command([FindExecutable(name="xacro"), " ", path, " name:=", ...])``,
   ``xacro.process_file(path, mappings={...})``, ``xacro.process_doc`` of a file ``xacro.parse`` read,
@@ -803,14 +804,13 @@ class _Reader:
             children = _acts_in(keywords.get("actions", args[0] if args and short == "GroupAction"
                                               else None))
             group = _Act("group", when, line, children=children)
-            for child in children:
-                _add_condition(child, keywords.get("condition"))
+            _add_group_condition(children, keywords.get("condition"), len(when))
             _scope_remaps(children)
             return group
         if short == "SetRemap":
             source, target = keywords.get("src", args[0] if args else None), \
                 keywords.get("dst", args[1] if len(args) > 1 else None)
-            act = _Act("remap", (), line, source=source, target=target)
+            act = _Act("remap", when, line, source=source, target=target)
             _add_condition(act, keywords.get("condition"))
             return act
         if short in ("RegisterEventHandler", "OnProcessExit", "OnProcessStart", "OnExecutionComplete"):
@@ -1044,6 +1044,21 @@ def _xacro_words(words: list) -> list:
 def _add_condition(act: _Act, condition) -> None:
     if isinstance(condition, Condition):
         act.when.append(condition)
+
+
+def _add_group_condition(acts: list, condition, at: int) -> None:
+    """Give a group's ``condition`` to ``acts`` (its actions) and to the actions of the groups
+    among them, nested as deep as they are: each runs only when every enclosing group's holds.
+    It goes before those of the groups inside it and the action's own, after the Python ``if``
+    tests enclosing the group (``at`` of them), as ``<group if>`` nested in XML reads; not to a
+    ``SetRemap``, whose condition is its own (its group's are the nodes')."""
+    if not isinstance(condition, Condition):
+        return
+    for act in acts:
+        if act.kind != "remap":
+            act.when.insert(min(at, len(act.when)), condition)
+        _add_group_condition(act.fields.get("children", ()) if act.kind == "group" else (),
+                             condition, at)
 
 
 def _scope_remaps(acts: list) -> None:
