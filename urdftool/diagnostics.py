@@ -137,7 +137,9 @@ class Finding(Frozen):
         ``(kind, text, detail)`` each, ``text`` as it stands in the message: the evidence a
         rule gives for what it assumed (``why``: a Gazebo plugin's "the robot is ROS 2 (its
         package builds with ament_cmake ...)"), where a package not found was looked for
-        (``searched``, detail: its name). A report for people writes each once per file and
+        (``searched``, detail: its name), the names there are where a name is not known
+        (``available``, detail: what they are, ``links``: urdftool.errors.available's
+        "available links: a, b, ..."). A report for people writes each once per file and
         refers to it after (urdftool.report.text_format); the machine formats keep every
         message whole
     """

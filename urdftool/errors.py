@@ -301,7 +301,29 @@ def available(kind: str, wanted: str, names) -> str:
         hint = (f"'{bare.group(0)}' is a xacro substitution without its '$' "
                 f"(${{{bare.group(1)}}}), which xacro leaves as written; ")
     quote = any(name != name.strip() for name in names)
-    return f"{hint}available {kind}: {listed(names, quote=quote) or '(none)'}"
+    written = f"available {kind}: {listed(names, quote=quote) or '(none)'}"
+    return Said(hint + written, (("available", written, kind),))
+
+
+class Said(str):
+    """A message holding parts that other findings of one report say word for word
+    (:attr:`~urdftool.diagnostics.Finding.repeated`: ``(kind, text, detail)`` each), such as
+    the list :func:`available` writes (``available``, the list as written, what it lists). A
+    message built on it with ``+`` (``"...; " + available(...)``) keeps them; an f-string or a
+    str method makes a plain str, which has none."""
+
+    repeated: tuple
+
+    def __new__(cls, text: str, repeated: tuple = ()):
+        made = super().__new__(cls, text)
+        made.repeated = tuple(repeated)
+        return made
+
+    def __add__(self, other: str) -> Said:
+        return Said(str.__add__(self, other), self.repeated + getattr(other, "repeated", ()))
+
+    def __radd__(self, other: str) -> Said:
+        return Said(str.__add__(other, self), getattr(other, "repeated", ()) + self.repeated)
 
 
 def listed(names, quote: bool = True) -> str:

@@ -127,24 +127,29 @@ def test_call_sites_write_each_file_once_for_its_run_of_lines():
         "/r/a.xacro:28", "52", "/r/b.xacro:28", "/r/a.xacro:9", "c:d", "c:d:4", "5"]
 
 
+def _listing(code: str, name: str, message: str, line: int) -> Finding:
+    """A finding as a rule makes it of ``message``, which may hold a list ``available`` wrote."""
+    return Finding(code, name, Severity.ERROR, message, Location("robot.urdf", line),
+                   repeated=getattr(message, "repeated", ()))
+
+
 def test_a_long_list_of_names_is_written_once():
     links = [f"link_{i:02d}" for i in range(31)]
-    findings = [Finding("U611", "gazebo-unknown-reference", Severity.ERROR,
-                        f"<gazebo reference='{name}'> names no link or joint; "
-                        f"{available('links', name, links)}", Location("robot.urdf", line))
+    findings = [_listing("U611", "gazebo-unknown-reference", f"<gazebo reference='{name}'> names "
+                         "no link or joint; " + available('links', name, links), line)
                 for name, line in (("head", 10), ("arm", 20))]
-    findings.append(Finding("U501", "transmission-unknown-joint", Severity.ERROR,
-                            f"transmission 't' names link 'x'; {available('links', 'x', links)}",
-                            Location("robot.urdf", 30)))
+    findings.append(_listing("U501", "transmission-unknown-joint",
+                             "transmission 't' names link 'x'; " + available('links', 'x', links),
+                             30))
     text = _text([FileResult("robot.urdf", findings)])
     assert text.count("link_00, link_01") == 1
     assert "available links: the 31 listed at line 10" in text
     assert "U501 transmission 't' names link 'x'; available links: the 31 listed at line 10" \
         in text
     # a short list is cheaper to repeat than to refer to
-    short = [Finding("U406", "undefined-material", Severity.WARNING,
-                     f"material '{m}' is not defined; {available('materials', m, ['Red'])}",
-                     Location("robot.urdf", line)) for m, line in (("a", 1), ("b", 2))]
+    short = [_listing("U406", "undefined-material", f"material '{m}' is not defined; "
+                      + available('materials', m, ['Red']), line)
+             for m, line in (("a", 1), ("b", 2))]
     assert _text([FileResult("robot.urdf", short)]).count("available materials: Red") == 1
 
 
@@ -498,3 +503,20 @@ def test_only_the_parts_a_finding_names_are_said_once():
               for n, tag, severity in ((3, "a", Severity.ERROR), (9, "b", Severity.WARNING))]
     text = _text([FileResult("r.urdf", marked)])
     assert text.count("(because)") == 1 and "ROS 2 (as said at line 3); fix it" in text, text
+
+
+def test_an_available_list_is_said_once_only_where_a_rule_wrote_it():
+    """A list "available links: ..." is written once per file where ``available`` wrote it
+    (it travels as the finding's ``repeated``), never where a message holds the words another
+    way: a name quoted from the robot that reads "available links: ..." (the report read it
+    back from the message before, and referred the second finding to the first)."""
+    quoted = "available links: " + ", ".join(f"link_{i:02d}" for i in range(12))
+    findings = [Finding(code, name, Severity.ERROR, f"{said}; {quoted}", Location("r.urdf", n))
+                for code, name, said, n in (
+                    ("U611", "gazebo-unknown-reference", "<gazebo reference='x'> names nothing", 3),
+                    ("U501", "transmission-unknown-joint", "transmission 't' names 'y'", 9))]
+    text = _text([FileResult("r.urdf", findings)])
+    assert text.count("link_00, link_01") == 2 and "listed at" not in text, text
+    written = available("links", "x", [f"link_{i:02d}" for i in range(12)])
+    assert written == quoted and written.repeated == (("available", quoted, "links"),)
+    assert ("names x; " + written).repeated == written.repeated  # kept through +

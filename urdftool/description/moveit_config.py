@@ -192,7 +192,7 @@ def _limit_problems(entry: LimitEntry, limits: YamlMap) -> list[tuple[int, str]]
         where = limits.lines[key]
         if key not in LIMIT_KEYS:
             problems.append((where, f"joint '{entry.joint}': unknown key '{key}', which MoveIt "
-                             f"ignores; {available('keys', str(key), LIMIT_KEYS)}"))
+                             "ignores; " + available('keys', str(key), LIMIT_KEYS)))
         elif key in LIMIT_FLAGS or key == "angle_wraparound" or key == "has_soft_limits":
             if not isinstance(value, bool):
                 problems.append((where, f"joint '{entry.joint}': {key} '{value}' must be true "

@@ -95,7 +95,8 @@ class XacroFailure(Exception):
     # 'xacro': it fails on a name the file uses and does not define (a property, a macro, a
     # property to forward), which a robot including it may define (:func:`_on_undefined`)
     undefined: bool = False
-    # 'package': the parts of the message other findings say again (PackageNotFound.repeated)
+    # the parts of the message other findings say again ('package': PackageNotFound.repeated;
+    # 'xacro': the names available, where a name is not known: urdftool.errors.available)
     repeated: tuple = ()
 
 
@@ -928,9 +929,10 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
         later = _defined_later(session, doc, message.split("xacro:", 1)[1].strip())
         message += later
     if later and session.ros1_tags:  # a catkin package: ROS 1 up to Lunar may expand it
-        return XacroFailure("xacro", message + "; not certain for a catkin package: ROS 1's "
-                            "xacro up to Lunar (Kinetic's) expands it in that order by default",
-                            where, certain=False)
+        message += ("; not certain for a catkin package: ROS 1's xacro up to Lunar (Kinetic's) "
+                    "expands it in that order by default")
+        return XacroFailure("xacro", str(message), where, certain=False,
+                            repeated=getattr(message, "repeated", ()))
     if "No such file or directory" in message:
         spec = _include_spec(error.__traceback__)
         empty = _empty_arguments(spec)
@@ -944,9 +946,10 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
     if invalid:  # xacro names the attribute, not what the macro takes
         message += "; the macro called here takes no parameter of that name: " + available(
             "parameters", invalid.group(1), _called_macro_params(error))
-    return XacroFailure("arg" if argument else "xacro", message, where, subject=argument,
+    return XacroFailure("arg" if argument else "xacro", str(message), where, subject=argument,
                         whatever_args=bool(invalid) and not _under_condition(error.__traceback__),
-                        undefined=not argument and _on_undefined(error))
+                        undefined=not argument and _on_undefined(error),
+                        repeated=getattr(message, "repeated", ()))  # (an available list's)
 
 
 # what xacro says when a macro, or a property to forward, is not defined (its own words, never

@@ -70,7 +70,8 @@ from urdftool.description.record import entry_key
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity, display_path
 from urdftool.errors import UsageError
 
-SCHEMA = 4  # 3: an entry's dependencies are its check's record; 4: findings' repeated parts
+SCHEMA = 5  # 3: an entry's dependencies are its check's record; 4: findings' repeated parts;
+# 5: the names a message lists as available among those parts (urdftool.errors.available)
 FOLDER = ".urdftool_cache"
 MAX_ENTRY_BYTES = 16 * 1024 * 1024
 _NO_KEY = ("no signing key: $XDG_CACHE_HOME/urdftool/key (or ~/.cache/urdftool/key) could not "

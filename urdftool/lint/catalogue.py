@@ -35,7 +35,7 @@ import re
 from collections.abc import Callable  # (not typing's: a check does not import it)
 
 from urdftool.diagnostics import Finding, Fix, Location, Severity
-from urdftool.errors import UnknownRule
+from urdftool.errors import Said, UnknownRule  # (Said: the rules take it from here)
 from urdftool.records import Frozen
 from urdftool.simulators import SIMULATORS
 
@@ -63,23 +63,11 @@ _CODE = re.compile(r"U\d{3}")
 _RANK = {Severity.INFO: 0, Severity.WARNING: 1, Severity.ERROR: 2}
 
 
-class Said(str):
-    """A finding's message holding parts that other findings of one report say word for word
-    (:attr:`~urdftool.diagnostics.Finding.repeated`: ``(kind, text, detail)`` each)."""
-
-    repeated: tuple
-
-    def __new__(cls, text: str, repeated: tuple):
-        made = super().__new__(cls, text)
-        made.repeated = tuple(repeated)
-        return made
-
-
 class Conditional(str):
     """A finding's message when the defect holds only in some configurations the robot's
     consumers can run; the text names the condition ("if controller 'x' is started ...").
     Reported at ``severity`` (a warning unless said), or at the rule's own when that is lower.
-    ``repeated``: as a :class:`Said`'s."""
+    ``repeated``: as a :class:`~urdftool.errors.Said`'s, with those of ``text``."""
 
     severity: Severity
     repeated: tuple
@@ -87,7 +75,7 @@ class Conditional(str):
     def __new__(cls, text: str, severity: Severity = Severity.WARNING, repeated: tuple = ()):
         made = super().__new__(cls, text)
         made.severity = Severity(severity)
-        made.repeated = tuple(repeated)
+        made.repeated = tuple(repeated) + getattr(text, "repeated", ())
         return made
 
 
@@ -145,11 +133,12 @@ class Rule(Frozen):
         severity when that is below the rule's. ``not_checked``: the finding says its file's
         robot was not checked (:attr:`~urdftool.diagnostics.Finding.not_checked`).
         ``repeated``: the parts of the message others say word for word
-        (:attr:`~urdftool.diagnostics.Finding.repeated`), or those of a :class:`Said`."""
+        (:attr:`~urdftool.diagnostics.Finding.repeated`), with those of a
+        :class:`~urdftool.errors.Said` message."""
         if severity is None and type(message) is str:  # most findings: as the rule says
             return Finding(self.code, self.name, self.severity, message, location, fix,
                            self.target, not_checked, repeated)
-        repeated = repeated or getattr(message, "repeated", ())
+        repeated = tuple(repeated) + getattr(message, "repeated", ())
         if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
             raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
                              f"more severe ({Severity(severity).value})")

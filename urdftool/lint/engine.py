@@ -145,7 +145,8 @@ def note_findings(robot) -> list[Finding]:
             message = message.replace(note.cause.message, load_error_message(note.cause), 1)
         if note.severity is not None:
             message = Conditional(message, note.severity)
-        findings.append(CATALOGUE.get(NOTE_CODES[note.kind]).finding(message, note.location))
+        findings.append(CATALOGUE.get(NOTE_CODES[note.kind]).finding(
+            message, note.location, repeated=note.cause.repeated if note.cause else ()))
     return findings
 
 

@@ -16,8 +16,8 @@ Text is for people, so it says each thing once (the machine formats keep every f
 - a long "available links: ..." list, where a missing package was looked for with how to
   pass it, and the evidence a rule gives for what it assumed (U640: why the robot is ROS 2),
   are written in full the first time in a file's report, and later findings refer to it
-  (:func:`_once`; the last two are parts of the message its finding names:
-  :attr:`~urdftool.diagnostics.Finding.repeated`);
+  (:func:`_once`; each is a part of the message its finding names,
+  :attr:`~urdftool.diagnostics.Finding.repeated`, never words read back from the message);
 - notes (severity info: explanations such as "its inertia is taken from its convex hull", not
   problems) are shown only when asked for (``check --notes``, ``notes = true`` in the
   settings); the summary line counts the ones it left out.
@@ -44,11 +44,9 @@ Notes = bool | Callable[[object], bool]  # for all results, or per result
 # jumps from quote to slash to "<" instead of trying the look-behind at every character of every
 # message (10,000 findings' messages: a quarter of the time).
 _NAME = re.compile(r"'[^'\s]*'|/(?<=[\s(]/)[^\s)]*|</?[A-Za-z_][\w:.\-]*>")
-# "available links: a, b, c" or "... (31 in all)", as urdftool.errors.available writes it
-_AVAILABLE = re.compile(r"available (?P<kind>[a-z][a-z ]*): "
-                        r"(?P<names>[^,\s]+(?:, (?!\.\.\. )[^,\s]+)*)"
-                        r"(?:, \.\.\. \((?P<count>\d+) in all\))?(?=$|;| \()")
-_LONG_LIST = 60  # [characters] a list shorter than this is written every time
+_LONG_LIST = 60  # [characters] a list of names shorter than this is written every time
+# how urdftool.errors.first_listed ends a list it cut: ", ... (31 in all)"
+_COUNTED = re.compile(r", \.\.\. \((\d+) in all\)$")
 # a figure: a number standing alone (not part of a word, a name, a unit's power like m^3 or a
 # version like 1.2.3): (?<![\w.+\-^/])[-+]?\d+..., written to start with its first character
 # ([-+\d], the character before it looked at behind that), so that the search skips from sign
@@ -417,11 +415,11 @@ def _listed(items: list[str]) -> str:
 
 
 def _once(message: str, location, listed: dict, repeated: tuple = ()) -> str:
-    """``message`` with each long "available ..." list, each "looked in: ..." of a missing
-    package, and each part its finding says other findings repeat (``repeated``: the evidence
-    for what a rule assumed, :attr:`~urdftool.diagnostics.Finding.repeated`), that it repeats
-    from an earlier finding of the same report replaced by a reference to where it was written
-    in full."""
+    """``message`` with each part its finding says other findings repeat (``repeated``,
+    :attr:`~urdftool.diagnostics.Finding.repeated`: a long "available ..." list, the "looked
+    in: ..." of a missing package, the evidence for what a rule assumed) that it repeats from
+    an earlier finding of the same report replaced by a reference to where it was written in
+    full."""
     def first(key: str):
         """Where ``key`` was written before (None: nowhere, and it is written here)."""
         if key not in listed:
@@ -431,24 +429,23 @@ def _once(message: str, location, listed: dict, repeated: tuple = ()) -> str:
         return f"line {where.line}" if where.file == location.file and \
             where.line is not None else str(where)
 
-    def replace(match) -> str:
-        names = match.group("names")
-        if len(names) < _LONG_LIST:
-            return match.group()
-        at = first(match.group())
-        if at is None:
-            return match.group()
-        count = match.group("count")
-        return f"available {match.group('kind')}: " + (f"the {count} listed at {at}" if count
-                                                         else f"as listed at {at}")
-
     for kind, part, detail in repeated:  # (Finding.repeated: the parts others say again)
-        if part not in message or kind not in _SAID_AGAIN:
+        if part not in message:
             continue
-        at = first(part)
-        if at is not None:
-            message = message.replace(part, _SAID_AGAIN[kind].format(at=at, detail=detail), 1)
-    return _AVAILABLE.sub(replace, message)
+        if kind == "available":  # (urdftool.errors.available: "available links: a, b, ...")
+            names = part[len(f"available {detail}: "):]
+            count = _COUNTED.search(names)
+            if len(names) - (len(count.group()) if count else 0) < _LONG_LIST:
+                continue  # (a short list: written every time)
+            at = first(part)
+            if at is not None:
+                message = message.replace(part, f"available {detail}: " + (
+                    f"the {count.group(1)} listed at {at}" if count else f"as listed at {at}"), 1)
+        elif kind in _SAID_AGAIN:
+            at = first(part)
+            if at is not None:
+                message = message.replace(part, _SAID_AGAIN[kind].format(at=at, detail=detail), 1)
+    return message
 
 
 # what a part of a message that other findings repeat (Finding.repeated) becomes after the

@@ -54,7 +54,8 @@ def hedged(robot, controller: Controller, message: str):
     if answer:
         return message
     verdict = runs_of(robot, controller)
-    return Conditional(f"{_if_started(controller, verdict)}, {_after(controller, message)}")
+    return Conditional(f"{_if_started(controller, verdict)}, {_after(controller, message)}",
+                       repeated=getattr(message, "repeated", ()))  # (an available list's)
 
 
 def _if_started(controller: Controller, verdict: Runs) -> str:
@@ -190,13 +191,13 @@ def controller_unknown_joint(robot):
                     yield controller.file.at(ref.line), Conditional(
                         f"if {spawn.told()}: {label(controller)} names joint '{ref.name}', "
                         "which is not in that build of the robot either; "
-                        f"{available('joints', ref.name, built.joints)}")
+                        + available('joints', ref.name, built.joints))
                     continue
                 literal = (" (every launch file of the robot loads the file without substitution, "
                            "so it is not replaced)" if "$(" in ref.name else "")
                 message = hedged(robot, controller, (
                     f"{label(controller)} names joint '{ref.name}', which is not in the URDF"
-                    f"{literal}; {available('joints', ref.name, robot.joints)}"))
+                    f"{literal}; " + available('joints', ref.name, robot.joints)))
                 if message is not None:
                     yield controller.file.at(ref.line), message
 
@@ -284,7 +285,8 @@ def controller_joint_not_actuated(robot):
                     f"if the robot's hardware interface offers only the joints of its "
                     f"transmissions (gazebo_ros_control does, and the URDF loads none: a RobotHW "
                     f"of its own registers the joints it is written for): {message}",
-                    getattr(message, "severity", Severity.WARNING))
+                    getattr(message, "severity", Severity.WARNING),
+                    repeated=getattr(message, "repeated", ()))
             if message is not None:
                 yield controller.file.at(ref.line), message
 
@@ -530,10 +532,10 @@ def controller_unknown_class(robot):
             message = (
                 f"{controller.type} is a {_ROS[other]} class, and {_version_reason(controller)}; "
                 + (f"{_ROS[controller.ros]} has {instead}" if instead
-                   else f"{available('classes', controller.type, classes(controller.ros))}"))
+                   else available('classes', controller.type, classes(controller.ros))))
         else:
             message = (f"{_ROS[controller.ros]} has no controller class '{controller.type}'; "
-                       f"{available('classes', controller.type, classes(controller.ros))}")
+                       + available('classes', controller.type, classes(controller.ros)))
         message = hedged(robot, controller, message)
         if message is not None:
             yield controller.file.at(controller.line), message
@@ -655,7 +657,7 @@ def controller_parameters_not_declared(robot):
             if any(key in block.params for key in _CONTROLLER_PARAMETERS):
                 yield read.file.at(block.line), (
                     f"'{block.name}: ros__parameters:' configures a controller no controller_manager "
-                    f"declares; {available('controllers', block.name, declared)}")
+                    "declares; " + available('controllers', block.name, declared))
 
 
 _CONSTRAINT_SETTINGS = ("goal_time", "stopped_velocity_tolerance")
@@ -714,7 +716,7 @@ def _trajectory_problems(robot, controller: Controller):
                     and not _substituted(str(key)):
                 yield where, (f"{label(controller)}: constraints name '{key}', which is not one "
                               "of its joints, so the controller ignores them; "
-                              f"{available('joints', str(key), names)}"), Severity.WARNING
+                              + available('joints', str(key), names)), Severity.WARNING
     for key in () if declared else _RATES:
         value = _number(params.get(key))
         if value is not None and value <= 0:

@@ -134,7 +134,7 @@ def gazebo_unknown_reference(robot):
         reference = gazebo.get("reference")
         if reference is not None and reference not in robot.links and reference not in robot.joints:
             yield gazebo, (f"<gazebo reference='{reference}'> names no link or joint; "
-                           f"{available('links', reference, robot.links)}")
+                           + available('links', reference, robot.links))
 
 
 @rule("U612", "diff-drive-unknown-joint", Severity.ERROR)
@@ -152,7 +152,7 @@ def diff_drive_unknown_joint(robot):
                 name = (element.text or "").strip()
                 if name not in robot.joints:
                     yield element, (f"diff-drive <{tag}> '{name}' is not a joint; "
-                                    f"{available('joints', name, robot.joints)}")
+                                    + available('joints', name, robot.joints))
 
 
 @rule("U613", "diff-drive-joint-not-continuous", Severity.WARNING)
@@ -348,7 +348,7 @@ def sensor_unknown_link(robot):
             elif (reference not in robot.links and reference in robot.joints
                   and sensor.get("type") != "force_torque"):
                 yield sensor, (f"sensor '{sensor.get('name')}' is on joint '{reference}', not a "
-                               f"link; {available('links', reference, robot.links)}")
+                               "link; " + available('links', reference, robot.links))
         for tag in FRAME_TAGS:
             holders = gazebo.iter("sensor") if tag.startswith("frame") else [gazebo]
             for element in (e for holder in holders for e in holder.iter(tag)):
@@ -378,7 +378,7 @@ def sensor_unknown_link(robot):
                     own = (f"use '{reference}', the link it sits on, or add a link '{name}'"
                            if reference in robot.links else available("links", name, robot.links))
                     yield element, (f"<{tag}> '{name}' is not a link, so TF cannot place the data "
-                                    f"stamped with it; {own}")
+                                    "stamped with it; " + own)
 
 
 def _unread(robot, element) -> bool:
@@ -422,7 +422,7 @@ def diff_drive_frame(robot):
         for tag, name, where, must_be_link in drive.frames:
             if must_be_link and name not in robot.links:
                 message = (f"{drive.label}: {tag} '{name}' is not a link of the robot; "
-                           f"{available('links', name, robot.links)}")
+                           + available('links', name, robot.links))
             elif not must_be_link and name in robot.links:
                 message = (f"{drive.label}: {tag} '{name}' is a link of the robot; the "
                            "odometry frame is published as its parent, so use a frame outside "

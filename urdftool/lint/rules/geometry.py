@@ -317,7 +317,7 @@ def undefined_material(robot):
             elif name not in defined:
                 from urdftool.errors import available
                 yield material, (f"link '{link.get('name')}': material '{name}' is not defined; "
-                                 f"{available('materials', name, defined)}")
+                                 + available('materials', name, defined))
 
 
 # Meshes ------------------------------------------------------------------------------------

@@ -335,7 +335,7 @@ def mimic_unknown_joint(robot):
             yield mimic, f"joint '{_name(joint)}': <mimic> has no joint attribute"
         elif target not in robot.joints:
             yield mimic, (f"joint '{_name(joint)}' mimics '{target}', which does not exist; "
-                          f"{available('joints', target, robot.joints)}")
+                          + available('joints', target, robot.joints))
 
 
 @rule("U210", "mimic-self", Severity.ERROR)

@@ -127,7 +127,7 @@ def kinematics_unknown_group(robot):
                 "both, and MoveIt given this SRDF ignores the entry", Severity.INFO)
         elif entry.group not in names:
             yield file.at(entry.line), (f"kinematics.yaml configures group '{entry.group}', which "
-                                        f"the SRDF does not define; {available('groups', entry.group, names)}")
+                                        "the SRDF does not define; " + available('groups', entry.group, names))
 
 
 def _groups_beside(robot, srdf) -> dict:
@@ -203,7 +203,7 @@ def moveit_limits_unknown_joint(robot):
     for entry in entries:
         if entry.joint not in robot.joints:
             yield file.at(entry.line), (f"joint_limits.yaml sets limits for joint '{entry.joint}', "
-                                        f"which is not in the URDF; {available('joints', entry.joint, robot.joints)}")
+                                        "which is not in the URDF; " + available('joints', entry.joint, robot.joints))
 
 
 def _urdf_limit(joint, key: str) -> float | None:
@@ -321,7 +321,7 @@ def moveit_controller_unknown(robot):
             continue
         if name not in declared:
             message = (f"MoveIt controller '{entry.name}' is not a ros_control controller of this "
-                       f"robot; {available('controllers', name, declared)}")
+                       "robot; " + available('controllers', name, declared))
             remaps = _remaps(robot, entry)
             if any(r.certain and r.controller in declared for r in remaps):
                 continue  # a launch file remaps MoveIt's action to a served controller's
@@ -333,14 +333,16 @@ def moveit_controller_unknown(robot):
             if remap is not None:  # served by a remap with some launch arguments only
                 message = Conditional(
                     f"unless {remap.written} remaps MoveIt's action to a ros_control "
-                    f"controller's ({_target(remap)}): {message}")
+                    f"controller's ({_target(remap)}): {message}",
+                    repeated=getattr(message, "repeated", ()))
             elif who == "unknown":
                 message = Conditional(
                     f"if MoveIt executes through the ros_control controllers the robot is checked "
                     f"with (a driver may serve '{entry.name}' with its own action server; no "
-                    f"launch file of the robot starts MoveIt with them alone): {message}")
+                    f"launch file of the robot starts MoveIt with them alone): {message}",
+                    repeated=getattr(message, "repeated", ()))
             else:
-                message = f"{where} starts MoveIt with this list and ros_control: {message}"
+                message = f"{where} starts MoveIt with this list and ros_control: " + message
             yield entry.file.at(entry.line), message
 
 
@@ -391,13 +393,15 @@ def moveit_controller_joints(robot):
             continue
         if remap is not None and not remap.certain:
             message = Conditional(f"when {remap.written} remaps MoveIt's action to "
-                                  f"{_target(remap)}: {message}")
+                                  f"{_target(remap)}: {message}",
+                                  repeated=getattr(message, "repeated", ()))
         elif remap is not None:
-            message = f"{remap.written} remaps MoveIt's action to '{remap.target}': {message}"
+            message = f"{remap.written} remaps MoveIt's action to '{remap.target}': " + message
         elif who == "unknown":
             message = Conditional(f"if MoveIt executes through the ros_control controller of that "
                                   f"name the robot is checked with (a driver may serve "
-                                  f"'{entry.name}' itself): {message}")
+                                  f"'{entry.name}' itself): {message}",
+                                  repeated=getattr(message, "repeated", ()))
         yield entry.file.at(entry.joints_line), message
 
 
@@ -431,7 +435,7 @@ def kinematics_solver_unknown(robot):
                     available("solvers", solver, moveit.SOLVERS))
             yield file.at(entry.solver_line), (
                 f"group '{entry.group}': kinematics solver '{solver}' is no plugin MoveIt can load, so "
-                f"the group has no IK solver; {hint}")
+                "the group has no IK solver; " + hint)
 
 
 def _ros_control_by_name(robot) -> dict:

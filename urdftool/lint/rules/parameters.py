@@ -219,7 +219,7 @@ def controller_unknown_parameter(robot):
             what = f"'{unknown}'" + (f" (nor anything under it: {name}, ...)" if unknown != name else "")
             yield controller.file.at(_line_of(controller.own, unknown) or line), (
                 f"{label(controller)} does not read {what} in any ROS 2 distribution, so it is "
-                f"ignored; {_suggest(unknown, names)}")
+                "ignored; " + _suggest(unknown, names))
 
 
 def _line_of(params, name: str) -> int | None:

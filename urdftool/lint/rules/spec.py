@@ -154,7 +154,7 @@ def spec_joint_missing(robot):
     for joint in spec[2]:
         if joint.name not in robot.joints:
             yield spec[0].at(joint.line), (f"spec joint '{joint.name}' is not in the URDF; "
-                                           f"{available('joints', joint.name, robot.joints)}")
+                                           + available('joints', joint.name, robot.joints))
 
 
 def _limit(joint, attribute):

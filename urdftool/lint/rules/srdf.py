@@ -36,14 +36,15 @@ def as_moveit_runs(check):
         for where, message, *fix in check(robot):
             # (a finding the rule itself lowers keeps its severity, said with the condition)
             kept = message.severity if isinstance(message, Conditional) else None
+            said = getattr(message, "repeated", ())  # (an available list: errors.available)
             if state == "conditional":  # the MoveIt configuration of another build: a note
                 message = Conditional(f"if MoveIt runs with the robot as checked ({why}): {message}",
-                                      Severity.INFO)
+                                      Severity.INFO, said)
             elif state == "certain":
-                message = f"{why}: {message}" if kept is None else \
-                    Conditional(f"{why}: {message}", kept)
+                message = f"{why}: " + message if kept is None else \
+                    Conditional(f"{why}: {message}", kept, said)
             elif state == "by default":  # MoveIt's for the defaults of the launch arguments
-                message = Conditional(f"{why}: {message}", kept or Severity.WARNING)
+                message = Conditional(f"{why}: {message}", kept or Severity.WARNING, said)
             yield (where, message, *fix)
     return judged
 
@@ -132,7 +133,7 @@ def srdf_unknown_joint(robot):
         if name not in known:
             yield srdf.at(element.sourceline), (
                 f"SRDF <{element.getparent().tag if element.tag == 'joint' else element.tag}> names "
-                f"joint '{name}', which is not in the URDF; {available('joints', name or '', known)}")
+                f"joint '{name}', which is not in the URDF; " + available('joints', name or '', known))
 
 
 @rule("U804", "srdf-unknown-link", Severity.ERROR)
@@ -163,11 +164,11 @@ def srdf_unknown_link(robot):
     for element, attribute, name in _references(srdf, attributes):
         if name not in robot.links:
             message = (f"SRDF <{element.tag} {attribute}='{name}'> is not a link of the URDF; "
-                       f"{available('links', name, robot.links)}")
+                       + available('links', name, robot.links))
             if element.tag in ("disable_collisions", "enable_collisions"):
                 message = Conditional(
                     f"SRDF <{element.tag} {attribute}='{name}'> is not a link of the URDF: MoveIt "
-                    f"drops the pair (it has no effect); {available('links', name, robot.links)}")
+                    "drops the pair (it has no effect); " + available('links', name, robot.links))
             yield srdf.at(element.sourceline), message
 
 
@@ -189,7 +190,7 @@ def srdf_unknown_group(robot):
         if name not in groups:
             yield srdf.at(element.sourceline), (
                 f"SRDF <{element.tag} {attribute}='{name}'> names no group; "
-                f"{available('groups', name, groups)}")
+                + available('groups', name, groups))
 
 
 @rule("U806", "srdf-state-outside-limits", Severity.ERROR)
@@ -314,7 +315,7 @@ def srdf_end_effector_parent(robot):
             yield srdf.at(element.sourceline), (
                 f"SRDF end effector '{element.get('name')}' has parent_link '{link}', which is "
                 f"not a link of its parent_group '{group.name}'; "
-                f"{available('links of the group', link, links)}")
+                + available('links of the group', link, links))
 
 
 def _overlaps(robot, srdf):

@@ -46,10 +46,12 @@ def _as_read(robot, transmission, message, unread_note: bool = False):
     if versions.ros2_only:
         return Conditional(f"nothing reads this ROS 1 transmission (ros2_control reads only those "
                            f"inside <ros2_control>; {versions.why(2)}), but {message}",
-                           Severity.INFO) if unread_note else None
+                           Severity.INFO,
+                           repeated=getattr(message, "repeated", ())) if unread_note else None
     if 2 in versions.versions and 1 in versions.versions:
         return Conditional(f"if ROS 1 reads this transmission ({versions.why(1)}; ros2_control "
-                           f"ignores it: {versions.why(2)}): {message}")
+                           f"ignores it: {versions.why(2)}): {message}",
+                           repeated=getattr(message, "repeated", ()))
     return message
 
 
@@ -91,7 +93,7 @@ def transmission_unknown_joint(robot):
                 yield joint.element, f"{_label(transmission)}: <joint> has no name"
             elif joint.name not in robot.joints:
                 yield joint.element, (f"{_label(transmission)} names joint '{joint.name}', which "
-                                      f"does not exist; {available('joints', joint.name, robot.joints)}")
+                                      "does not exist; " + available('joints', joint.name, robot.joints))
 
 
 @rule("U502", "transmission-fixed-joint", Severity.ERROR)
@@ -162,7 +164,7 @@ def unknown_hardware_interface(robot):
                     bare = text.split("/")[-1].split("::")[-1]
                     yield interface, _if_ros(unsaid, (
                         f"{_label(transmission)}: unknown hardware interface '{text}'; "
-                        f"{available('interfaces', bare, HARDWARE_INTERFACES)}"))
+                        + available('interfaces', bare, HARDWARE_INTERFACES)))
 
 
 def _if_ros(unsaid: bool, message: str):
@@ -170,7 +172,8 @@ def _if_ros(unsaid: bool, message: str):
     robot (``unsaid``)."""
     return Conditional(f"if ROS 1's ros_control loads it (nothing says ROS runs this robot: no "
                        f"package.xml, launch file, controller file or ros_control plugin; Drake "
-                       f"reads a transmission without one): {message}") if unsaid else message
+                       f"reads a transmission without one): {message}",
+                       repeated=getattr(message, "repeated", ())) if unsaid else message
 
 
 @rule("U504", "transmission-no-actuator", Severity.ERROR)
@@ -439,7 +442,7 @@ def ros2_control_unknown_joint(robot):
             yield joint, "<ros2_control> <joint> has no name"
         elif name not in robot.joints:
             yield joint, (f"ros2_control joint '{name}' does not exist; "
-                          f"{available('joints', name, robot.joints)}")
+                          + available('joints', name, robot.joints))
 
 
 @rule("U512", "ros2-control-fixed-joint", Severity.ERROR)
@@ -485,12 +488,12 @@ def ros2_control_interface_name(robot):
                 said = (f"ros2_control joint '{joint.get('name')}': <{interface.tag}> '{name}' "
                         "is not a standard interface")
                 if close_names(name, ROS2_INTERFACES, n=1, cutoff=_MISSPELT):
-                    yield interface, f"{said}; {available('interfaces', name, ROS2_INTERFACES)}"
+                    yield interface, f"{said}; " + available('interfaces', name, ROS2_INTERFACES)
                 else:  # a custom interface: legal, for the robot's own plugin and controllers
                     yield interface, Conditional(
                         f"{said}: the standard controllers (ros2_controllers) cannot claim it, "
                         "only controllers that know the hardware plugin's own names; "
-                        f"{available('standard interfaces', name, ROS2_INTERFACES)}",
+                        + available('standard interfaces', name, ROS2_INTERFACES),
                         Severity.INFO)
 
 
@@ -645,4 +648,4 @@ def ros2_control_hardware_plugin(robot):
             known = KNOWN_HARDWARE.get(name.split("/")[0])
             if known and name not in known:
                 yield element, (f"hardware plugin '{name}' does not exist; "
-                                f"{available('plugins', name, [p for ps in KNOWN_HARDWARE.values() for p in ps])}")
+                                + available('plugins', name, [p for ps in KNOWN_HARDWARE.values() for p in ps]))

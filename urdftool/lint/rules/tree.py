@@ -40,7 +40,8 @@ def _unless_given(robot, tag: str, name: str, message: str) -> str:
         f"arguments {', '.join(args[:-1])} and {args[-1]} keep their empty defaults"
     return Conditional(f"{message}, only while the xacro {listed}: a build giving "
                        f"{'it a value' if len(args) == 1 else 'each a value of its own'} "
-                       f"({' '.join(f'{arg}:=...' for arg in args)}) names them apart")
+                       f"({' '.join(f'{arg}:=...' for arg in args)}) names them apart",
+                       repeated=getattr(message, "repeated", ()))
 
 
 @rule("U101", "duplicate-link", Severity.ERROR)
@@ -131,7 +132,7 @@ def unknown_link(robot):
             if not link or link in robot.links:
                 continue
             message = (f"joint '{joint.get('name')}' names {side} link '{link}', which does not "
-                       f"exist; {available('links', link, robot.links)}")
+                       "exist; " + available('links', link, robot.links))
             if link in mounts.get(side, ()):
                 verb = "hangs on" if side == "parent" else "attaches"
                 message = Conditional(
