@@ -178,7 +178,7 @@ def test_fix_diff_on_a_xacro_robot_edits_the_included_macro_file(tmp_path, run_c
     remaining = {line.split()[2 if "[" not in line.split()[2] else 3]
                  for line in result.stdout.splitlines() if ": error " in line or ": warning " in line}
     assert remaining == {"U303", "U309", "U206"}
-    assert "[~] 2 more with --unsafe-fixes" in result.stdout
+    assert "[~] 2 fixable with --unsafe-fixes" in result.stdout  # (none safe left: not "more")
 
 
 def test_exit_code_after_fix_reflects_what_remains(tmp_path, run_cli):

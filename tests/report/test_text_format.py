@@ -520,3 +520,19 @@ def test_an_available_list_is_said_once_only_where_a_rule_wrote_it():
     written = available("links", "x", [f"link_{i:02d}" for i in range(12)])
     assert written == quoted and written.repeated == (("available", quoted, "links"),)
     assert ("names x; " + written).repeated == written.repeated  # kept through +
+
+
+def test_fixes_only_unsafe_and_only_of_hidden_notes_are_said_so():
+    # "[~] 1 more with --unsafe-fixes" after "no problems found" named more than nothing, of
+    # a note the report did not show (mastering_ros' cool_arm)
+    from urdftool.diagnostics import Fix, Finding, Location, Severity
+    from urdftool.lint.engine import FileResult
+    from urdftool.report.text_format import lines
+
+    note = Finding("U999", "x", Severity.INFO, "a note", Location("r.urdf", 1),
+                   Fix("do", (), safe=False))
+    text = ["".join(span for span, _ in line) for line in lines([FileResult("r.urdf", [note])],
+                                                                notes=False)]
+    assert text[-1] == "[~] 1 fixable with --unsafe-fixes; 1 of them in notes not shown"
+    shown = ["".join(span for span, _ in line) for line in lines([FileResult("r.urdf", [note])])]
+    assert shown[-1] == "[~] 1 fixable with --unsafe-fixes"

@@ -66,12 +66,8 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
     out: list[Line] = []
     hidden = 0
     for result in results:
-        shown = result.findings
-        if not (notes(result) if callable(notes) else notes):
-            # (but a note saying why the file was not checked, which the exit code counts)
-            kept = {id(f) for f in result.not_checked_by}
-            shown = [f for f in shown if f.severity is not Severity.INFO or id(f) in kept]
-            hidden += len(result.findings) - len(shown)
+        shown = _shown(result, notes)
+        hidden += len(result.findings) - len(shown)
         if not shown:
             continue
         out.append([(display_path(result.path), "bold underline")])
@@ -90,9 +86,30 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
     if fixable:
         safe, unsafe = fixable.count(True), fixable.count(False)
         parts = [f"[*] {safe} fixable with --fix"] if safe else []
-        parts += [f"[~] {unsafe} more with --unsafe-fixes"] if unsafe else []
+        parts += [f"[~] {unsafe} {'more' if safe else 'fixable'} with --unsafe-fixes"] \
+            if unsafe else []
+        unseen = sum(f.fix is not None for f in _hidden(results, notes))
+        parts += [f"{unseen} of them in notes not shown"] if unseen else []
         out.append([("; ".join(parts), "")])
     return [_escaped(line) for line in out]
+
+
+def _shown(result, notes: Notes) -> list:
+    """The findings of ``result`` the report shows: its notes only where ``notes`` says (but
+    a note saying why the file was not checked, which the exit code counts)."""
+    if notes(result) if callable(notes) else notes:
+        return result.findings
+    kept = {id(f) for f in result.not_checked_by}
+    return [f for f in result.findings if f.severity is not Severity.INFO or id(f) in kept]
+
+
+def _hidden(results, notes: Notes) -> list:
+    """The findings :func:`lines` does not show (:func:`_shown`)."""
+    found = []
+    for result in results:
+        shown = {id(f) for f in _shown(result, notes)}
+        found += [f for f in result.findings if id(f) not in shown]
+    return found
 
 
 def _summary(results, hidden: int) -> Line:
