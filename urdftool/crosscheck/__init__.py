@@ -433,12 +433,14 @@ def _package_files(robot, name: str) -> dict:
     """``rest`` -> the file urdftool resolves, for each ``package://NAME/rest`` the robot's
     meshes and textures name that resolves to a file."""
     from urdftool.description.files import kind_of
+    from urdftool.description.packages import package_uri_parts
 
     found = {}
     for element in robot.root.iter("mesh", "texture"):
         uri = element.get("filename") or ""
-        rest = uri[len(f"package://{name}/"):] if uri.startswith(f"package://{name}/") else ""
-        if not rest or rest in found:
+        # (split as _packages names them: package:///NAME/... too)
+        package, rest = package_uri_parts(uri) if uri.startswith("package://") else ("", "")
+        if package != name or not rest or rest in found:
             continue
         try:
             path = robot.resolve_uri(uri)

@@ -60,18 +60,18 @@ def _manifest_of(folder: Path, root: Path | None = None) -> tuple[str, bytes] | 
             return None
         data = _manifest(os.fspath(path))
         if data is not None:
-            return name, _COMMENT.sub(b"", data)
+            return name, data
     return None
 
 
 @per_run
 def _manifest(path: str) -> bytes | None:
-    """The bytes of the package.xml at ``path``, None when it cannot be read: read once per
-    run, whoever asks (every robot's resolver walks up and scans below the same repository,
-    and two rules read its manifest: a check of the corpus read 83 package.xml files 351
-    times)."""
+    """The bytes of the manifest (package.xml, manifest.xml) at ``path``, comments removed,
+    None when it cannot be read: read once per run, whoever asks (every robot's resolver walks
+    up and scans below the same repository, and two rules read its manifest: a check of the
+    corpus read 83 package.xml files 351 times), its comments too."""
     try:
-        return read_regular(path, _MAX_MANIFEST, as_="package manifest")
+        return _COMMENT.sub(b"", read_regular(path, _MAX_MANIFEST, as_="package manifest"))
     except OSError:
         return None
 

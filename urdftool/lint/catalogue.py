@@ -63,19 +63,17 @@ _CODE = re.compile(r"U\d{3}")
 _RANK = {Severity.INFO: 0, Severity.WARNING: 1, Severity.ERROR: 2}
 
 
-class Conditional(str):
+class Conditional(Said):
     """A finding's message when the defect holds only in some configurations the robot's
     consumers can run; the text names the condition ("if controller 'x' is started ...").
     Reported at ``severity`` (a warning unless said), or at the rule's own when that is lower.
     ``repeated``: as a :class:`~urdftool.errors.Said`'s, with those of ``text``."""
 
     severity: Severity
-    repeated: tuple
 
     def __new__(cls, text: str, severity: Severity = Severity.WARNING, repeated: tuple = ()):
-        made = super().__new__(cls, text)
+        made = super().__new__(cls, text, tuple(repeated) + getattr(text, "repeated", ()))
         made.severity = Severity(severity)
-        made.repeated = tuple(repeated) + getattr(text, "repeated", ())
         return made
 
 

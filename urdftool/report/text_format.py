@@ -64,10 +64,13 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
     notes: whether findings of severity info are shown, for every result or per result
     """
     out: list[Line] = []
-    hidden = 0
+    hidden, unseen = 0, 0  # (notes not shown; fixes among them)
     for result in results:
         shown = _shown(result, notes)
-        hidden += len(result.findings) - len(shown)
+        if len(shown) < len(result.findings):
+            kept = {id(f) for f in shown}
+            left = [f for f in result.findings if id(f) not in kept]
+            hidden, unseen = hidden + len(left), unseen + sum(f.fix is not None for f in left)
         if not shown:
             continue
         out.append([(display_path(result.path), "bold underline")])
@@ -88,7 +91,6 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
         parts = [f"[*] {safe} fixable with --fix"] if safe else []
         parts += [f"[~] {unsafe} {'more' if safe else 'fixable'} with --unsafe-fixes"] \
             if unsafe else []
-        unseen = sum(f.fix is not None for f in _hidden(results, notes))
         parts += [f"{unseen} of them in notes not shown"] if unseen else []
         out.append([("; ".join(parts), "")])
     return [_escaped(line) for line in out]
@@ -101,15 +103,6 @@ def _shown(result, notes: Notes) -> list:
         return result.findings
     kept = {id(f) for f in result.not_checked_by}
     return [f for f in result.findings if f.severity is not Severity.INFO or id(f) in kept]
-
-
-def _hidden(results, notes: Notes) -> list:
-    """The findings :func:`lines` does not show (:func:`_shown`)."""
-    found = []
-    for result in results:
-        shown = {id(f) for f in _shown(result, notes)}
-        found += [f for f in result.findings if id(f) not in shown]
-    return found
 
 
 def _summary(results, hidden: int) -> Line:
