@@ -355,6 +355,41 @@ def test_a_vector_written_across_lines_is_found_among_values_of_the_same_text(tm
     assert '"0\\n0"' in findings[0].message
 
 
+def test_a_value_written_raw_far_before_its_tags_end_is_found(tmp_path):
+    # lxml's line of an element is its start tag's '>': 70 blank lines after a raw tab or line
+    # break inside a value (and a later value holding a raw '>', which XML allows) put it past
+    # any fixed number of lines; the '>' is found in the bytes instead (session 19 left it)
+    blank = "\n" * 70
+    text = ('<robot name="r"><link name="a"/><link name="b"><inertial>'
+            f'<mass value="2\t"{blank}/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" '
+            'izz="1"/></inertial></link>\n<joint name="j" type="fixed"><parent link="a"/>'
+            f'<child link="b"/>\n<origin xyz="0\t0 0"{blank} rpy="0\n0 0" a="x>y"{blank}/>'
+            '</joint></robot>\n')
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U023",))
+    assert found == [("robot.urdf", 1, "U023"), ("robot.urdf", 73, "U023"),
+                     ("robot.urdf", 73, "U023")]
+    assert '<mass value="2\\t">' in findings[0].message  # (as written, not lxml's space)
+    assert {'<origin xyz="0\\t0 0">', '<origin rpy="0\\n0 0">'} == \
+        {m[m.index("<"):m.index(">") + 1] for m in (f.message for f in findings[1:])}
+
+
+def test_a_raw_value_outside_any_tag_is_not_followed_past_the_next_markup(tmp_path):
+    # a comment's look-alike of a value, an apostrophe after it that no quote closes, then
+    # 2,000 origins of the same text written on one line: none is looked up in the source
+    from urdftool.lint.fixes import tags
+
+    looked = []
+    joints = "".join(f'<link name="l{i}"/><joint name="j{i}" type="fixed"><parent link="a"/>'
+                     f'<child link="l{i}"/><origin xyz="0 0 0"/></joint>\n' for i in range(2000))
+    text = (f'<robot name="r"><link name="a"/><!-- xyz="0\n0 0" isn\'t one -->\n{joints}'
+            '</robot>\n')
+    source_tag = tags.source_tag
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(tags, "source_tag", lambda *a: looked.append(a) or source_tag(*a))
+        found, _ = check_folder(tmp_path, {"robot.urdf": text}, select=("U023",))
+    assert found == [] and len(looked) <= 1
+
+
 def test_a_number_urdfdom_refuses_is_an_error_in_a_joint_and_a_warning_elsewhere(tmp_path):
     # urdfdom refuses the robot for a joint's number (as for every URDFDOM_REFUSES error: tree
     # fails as check_urdf does) and loads it without a link's part or a colour otherwise

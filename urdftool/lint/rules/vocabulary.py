@@ -493,38 +493,59 @@ _RAW_SPACED = re.compile(rb"""=[ \t\r\n]*(?:"([-+0-9.eE \t\r\n]*[\t\r\n][-+0-9.e
 
 def _raw_spaced(robot) -> dict[str, list[tuple[int, int]]]:
     """The values (as lxml reads them) written with a raw tab or line break in the robot's
-    file, read from its bytes, each with the lines it spans (first, last) as lxml's
-    ``sourceline`` counts them (LF only: a CR-only file is line 1 to it); empty for nearly
-    every robot."""
+    file, read from its bytes, each with the lines from its first to its start tag's '>' (where
+    lxml's ``sourceline`` puts an element, LF only: a CR-only file is line 1 to it); empty for
+    nearly every robot."""
     found: dict[str, list[tuple[int, int]]] = {}
     for data in robot.sources.values():
         if data is None:
             continue
-        line, counted = 1, 0
+        line, counted, tag_end, tag_line = 1, 0, -1, 1
         for match in _RAW_SPACED.finditer(data):
             # line ends: libxml2's (LF only), as lxml's sourceline they are compared with
             line += data.count(b"\n", counted, match.start())
             counted = match.start()
+            if match.start() > tag_end:  # (values of one tag share its end: found once)
+                tag_end = _tag_end(data, match.end())
+                # line ends: libxml2's, as above
+                tag_line = line + data.count(b"\n", match.start(), tag_end)
             raw = match.group(1) if match.group(1) is not None else match.group(2)
             value = raw.decode().replace("\r\n", " ").translate(_NORMALISED)
-            # line ends: libxml2's, as above
-            found.setdefault(value, []).append((line, line + raw.count(b"\n")))
+            found.setdefault(value, []).append((line, tag_line))
     return found
 
 
-# [lines] from the last line of a value to the '>' of its start tag, at most (the attributes
-# after it, one a line, as the SolidWorks exporter writes them): where lxml puts an element's
-# line, which is compared with each value's lines before the tag is looked at
-_TAG_TAIL = 64
+def _tag_end(data: bytes, start: int) -> int:
+    """Where the '>' ending the start tag that holds ``start`` is (quoted values skipped: XML
+    allows a raw '>' in one), or the first '<' outside a tag's values (no start tag holds
+    ``start``: a comment's or a text's look-alike, not followed past the next markup); the end
+    of ``data`` where neither is. Byte searches from quote to quote, never a pattern that could
+    backtrack: linear in what is looked at."""
+    at = start
+    while True:
+        found = _TAG_END.search(data, at)
+        if found is None:
+            return len(data)
+        if found.group() != b"\"" and found.group() != b"'":
+            return found.start()
+        close = data.find(found.group(), found.end())
+        close = len(data) if close < 0 else close
+        markup = data.find(b"<", found.end(), close)  # (no value of a start tag holds a '<')
+        if markup >= 0 or close == len(data):
+            return markup if markup >= 0 else close
+        at = close + 1
+
+
+_TAG_END = re.compile(rb"[<>\"']")
 
 
 def _written_there(element, spans: list[tuple[int, int]]) -> bool:
-    """Whether ``element``'s start tag may hold a value spanning one of ``spans``: lxml's line
-    of the element (its start tag's '>') is within :data:`_TAG_TAIL` lines after it. An
+    """Whether ``element``'s start tag may hold a value written over one of ``spans`` (its
+    first line to its tag's '>'): lxml's line of the element (that '>') is within it. An
     integer comparison per element: one look at the tag then confirms it (a robot repeats its
     values, 20,000 origins ``0 0 0`` beside one written across lines)."""
     end = element.sourceline
-    return end is not None and any(first <= end <= last + _TAG_TAIL for first, last in spans)
+    return end is not None and any(first <= end <= last for first, last in spans)
 
 
 _NORMALISED = str.maketrans("\t\r\n", "   ")
