@@ -311,13 +311,14 @@ def read_srdf(path: Path, as_: str = SRDF_READ_AS) -> SrdfFile:
 
     parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
     result.text = text
+    read, result.caution, result.line = _entities_kept(text)
     try:
-        result.data = etree.fromstring(text.encode(), parser)
+        result.data = etree.fromstring(read.encode(), parser)
     except etree.XMLSyntaxError as error:
         conflict = merge_conflict(text.encode())
         result.problem, result.line = (conflict.message, conflict.line) if conflict else \
             (f"not well-formed XML: {error.msg}", _xml_error_line(error, text))
-        comments = None if conflict else tinyxml2_comments(text.encode())
+        comments = None if conflict else tinyxml2_comments(read.encode())
         if comments is None:
             return result
         try:  # as srdfdom's TinyXML2 reads it
@@ -325,7 +326,7 @@ def read_srdf(path: Path, as_: str = SRDF_READ_AS) -> SrdfFile:
         except etree.XMLSyntaxError:
             return result
         result.problem, result.line = None, comments[1]
-        result.caution = (
+        result.caution = (result.caution + "; and " if result.caution else "") + (
             "not well-formed XML, '--' inside a comment: srdfdom reads it (TinyXML2 ends a "
             "comment at the first '-->'), so MoveIt does when its launch file loads the SRDF "
             "as text (ROS 1's textfile=, a Python launch file reading it), but xacro refuses "
@@ -338,6 +339,42 @@ def read_srdf(path: Path, as_: str = SRDF_READ_AS) -> SrdfFile:
                                        result.data.sourceline)
         result.data = None
     return result
+
+
+def _entities_kept(text: str) -> tuple[str, str | None, int | None]:
+    """(the SRDF as srdfdom reads it, why it differs): an entity the file declares and uses
+    (``<!ENTITY g "head">``, ``<group name="&g;">``) is expanded by libxml2 (lxml) and kept as
+    those characters by srdfdom's TinyXML2, which skips the DOCTYPE (measured through urdfdom
+    6.0's check_urdf, the same TinyXML2: ``<link name="&g;">`` is the link ``&g;``); each such
+    reference is then written as its characters (``&amp;g;``: lines unchanged), so that no
+    name is checked that MoveIt does not read; the line of the first use. (text, None, None)
+    for nearly every SRDF."""
+    if "<!ENTITY" not in text:
+        return text, None, None
+    declared = set(_DECLARED.findall(text))
+    body = max(0, text.find("]>", text.rfind("<!ENTITY")))  # (what follows the DOCTYPE)
+    used = []
+
+    def kept(found):
+        if found.group(1) not in declared:
+            return found.group(0)
+        if found.start() > body:
+            used.append((found.group(0), found.start()))
+        return "&amp;" + found.group(0)[1:]
+
+    read = _REFERENCE.sub(kept, text)
+    if not used:
+        return text, None, None
+    return read, (f"declares the entity {used[0][0]!r} and uses it: srdfdom (TinyXML2) expands "
+                  "no entity, so MoveIt reads the characters as written when its launch file "
+                  "loads the SRDF as text (ROS 1's textfile=, a Python launch file reading it), "
+                  "the entity's text when it passes through xacro (MoveItConfigsBuilder); the "
+                  "SRDF is checked as srdfdom reads it; write the text in place of each "
+                  "entity"), line_at(text, used[0][1])
+
+
+_DECLARED = re.compile(r"<!ENTITY\s+([^\s%]\S*)")  # (a general entity; '%' a parameter one)
+_REFERENCE = re.compile(r"&([^\s;&<#]+);")
 
 
 # What srdfdom reads of an attribute untrimmed: a joint property's value, a collision pair's

@@ -75,6 +75,33 @@ def test_an_srdf_read_despite_a_double_hyphen_says_why_it_is_not_fixed(tmp_path)
     assert "holds '--' in a comment" in _add_entry(srdf, ("a", "b"), "Default").reason
 
 
+def test_an_entity_the_srdf_declares_is_read_as_srdfdom_reads_it(tmp_path):
+    """libxml2 (lxml) expanded <group name="&g;"> to "head" where srdfdom's TinyXML2 keeps the
+    characters "&g;" (check_urdf 6.0, the same TinyXML2, reads <link name="&g;"> so): every
+    SRDF rule judged a group MoveIt does not have, silently. A warning, and the SRDF checked as
+    srdfdom reads it; an external entity is no error either (lxml refused it: "MoveIt refuses
+    to start with it", which srdfdom reads as text), nor a bomb expanded; a declaration never
+    used changes nothing."""
+    lol = "".join(f'<!ENTITY a{i} "{"&a%d;" % (i - 1) * 10 if i else "lol"}">' for i in range(10))
+    for doctype, use, warned in (
+            ('<!ENTITY g "head">', "&g;", True),
+            ('<!ENTITY g SYSTEM "file:///etc/hostname">', "&g;", True),
+            (lol, "&a9;", True),
+            ('<!ENTITY g "x"><!ENTITY % p "y">', "head", False)):
+        body = (f'<group name="{use}"><chain base_link="base_link" tip_link="head"/></group>\n'
+                '<group_state name="up" group="head"><joint name="head_joint" value="1"/>'
+                '</group_state>')
+        text = f"<!DOCTYPE robot [{doctype}]>\n{srdf(body)}"
+        found, findings = check_folder(tmp_path / str(len(text)),
+                                       {"robot.urdf": ROBOT, "robot.srdf": text})
+        if not warned:
+            assert found == [], doctype
+            continue
+        assert found == [("robot.srdf", 3, "U801"), ("robot.srdf", 4, "U805")], doctype
+        assert findings[0].severity.value == "warning" and "TinyXML2" in findings[0].message
+        assert f"available groups: {use}" in findings[1].message
+
+
 def test_srdf_that_is_not_a_robot(tmp_path):
     found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": "<?xml version='1.0'?>\n<group/>"})
     assert found == [("robot.srdf", 2, "U801")] and "<group>" in findings[0].message

@@ -78,7 +78,10 @@ def malformed_srdf(robot):
     (``<!-- ------ -->``), which the XML standard forbids, but srdfdom's TinyXML2 ends the
     comment at the first ``-->``. MoveIt then reads it when its launch file loads the SRDF as
     text (ROS 1's ``textfile=``), not through xacro (MoveItConfigsBuilder's way), which
-    refuses it. The SRDF is checked as srdfdom reads it.
+    refuses it. And an entity the SRDF declares and uses (``<!ENTITY g "arm">``, ``<group
+    name="&g;">``): TinyXML2 expands none, so MoveIt reads ``&g;`` as those characters when the
+    SRDF is loaded as text, the entity's text through xacro. The SRDF is checked as srdfdom
+    reads it.
 
     Bad: ``<group name="arm"> <chain base_link="a" tip_link="b">`` (unclosed)
     Good: ``<chain base_link="a" tip_link="b"/>``
