@@ -85,8 +85,15 @@ def check_update(path: Path) -> None:
 
 def _to_update(existing: Path):
     """The SRDF at ``existing`` (:func:`_document`), refused when its root holds a ``<link>``,
-    a ``<joint>`` or a xacro element: a robot description, which a merge would rewrite."""
+    a ``<joint>`` or a xacro element (a robot description, which a merge would rewrite), or
+    when srdfdom reads it otherwise than XML does (a caution: ``--`` in a comment, an entity
+    used), which a merge would write as srdfdom reads it."""
     document = _document(existing)
+    if document.caution:  # (its tree is srdfdom's reading, not the file's: written back, the
+        # comments' hyphens would be blanks and the entities their characters; expat, which
+        # finds the root's bytes, refuses it)
+        raise SrdfError(f"{document.display}:{document.line}: not updated: {document.caution}",
+                        location=document.at(document.line))
     described = next((child for child in document.root if child.tag in ("link", "joint")
                        or is_xacro(child.tag)), None)
     if described is not None:  # merged into, a robot description lost its formatting
