@@ -100,6 +100,26 @@ def test_macro_libraries_are_not_items(project):
                                  "robots/humanoid/humanoid.urdf.xacro::urdftool"]
 
 
+def test_robot_files_of_which_none_is_a_robot_are_no_pass(project):
+    # session 20: a robot whose root link was deleted (a part nobody includes) passed `pytest
+    # --urdftool` with the other tests, never collected, where `urdftool check` says "nothing
+    # checked" (exit 2, session 7's class); and macro libraries alone the same
+    (project.path / "robots" / "broken.urdf").write_text(BROKEN.replace('<link name="a"/>', ""))
+    shutil.rmtree(project.path / "robots" / "humanoid")
+    project.makepyfile(test_other="def test_other():\n    pass\n")
+    for args in (("robots", "test_other.py"), ("robots", "-k", "other")):
+        result = project.runpytest_inprocess("--urdftool", *args, "-p", "no:cacheprovider",
+                                             "-p", "no:xdist")
+        assert result.ret == pytest.ExitCode.USAGE_ERROR
+        assert "urdftool: nothing checked: " in result.stderr.str()
+        assert "broken.urdf: a part of a robot defined elsewhere" in result.stderr.str()
+    # a robot beside them is checked; they are left out, as check leaves them
+    shutil.copytree(ROBOTS / "humanoid", project.path / "robots" / "humanoid")
+    result = project.runpytest_inprocess("--urdftool", "robots", "-k", "other", "-p",
+                                         "no:cacheprovider", "-p", "no:xdist")
+    assert result.ret == pytest.ExitCode.NO_TESTS_COLLECTED  # (humanoid's item deselected)
+
+
 def test_settings_apply_to_items(project):
     (project.path / "urdftool.toml").write_text('ignore = ["U204"]\n')
     result = project.runpytest_inprocess("--urdftool", "robots", "-p", "no:cacheprovider",

@@ -99,7 +99,9 @@ def _top_level(config, folder: Path) -> set[Path]:
 
         try:
             with one_run(config.stash.setdefault(_RUN, {})):
-                files = expand([str(folder)], CheckRequest()).files
+                targets = expand([str(folder)], CheckRequest())
+            files = targets.files
+            cache[("unchecked", folder)] = targets.unchecked
         except Exception:  # noqa: BLE001 - no robots here, or unreadable: nothing to collect
             files = []
         real = [Path(real_path(file)) for file in files]
@@ -107,6 +109,25 @@ def _top_level(config, folder: Path) -> set[Path]:
         cache[("named", folder)] = [Path(file) for file in files
                                     if Path(file).absolute().parent == folder.absolute()]
     return cache[folder]
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(session, config, items):
+    """A check that checks nothing is no pass, as ``urdftool check`` says (exit 2): robot
+    files were found (a robot whose root link was deleted, parts no robot includes, macro
+    libraries only) and none is a robot of its own, so no item would fail: a usage error.
+    Before ``-k`` deselects (tryfirst): the items pytest collected."""
+    if not config.getoption("urdftool") or any(isinstance(i, RobotItem) for i in items):
+        return
+    cache = config.stash.get(_CACHE, {})
+    reasons = sorted({why for key, found in cache.items()
+                      if isinstance(key, tuple) and key[0] == "unchecked" for why in found},
+                     key=len)
+    if reasons:
+        from urdftool.report.escape import text
+
+        more = f" (and {len(reasons) - 1} more)" if len(reasons) > 1 else ""
+        raise pytest.UsageError(text(f"urdftool: nothing checked: {reasons[0]}{more}"))
 
 
 _CACHE = pytest.StashKey[dict]()
