@@ -212,6 +212,32 @@ def test_collada_nested_instance_nodes_are_multiplied(tmp_path):
     assert triangle_count(tmp_path / "cycle.dae") > inputs.MAX_TRIANGLES
 
 
+def test_collada_entities_are_refused_where_they_stand_for_geometry(tmp_path, run_cli):
+    """Session 20: urdftool's own COLLADA reader refused an entity, and pycollada (libxml2)
+    read the mesh expanding it where Assimp (RViz) and Gazebo read '&t;' as characters: a
+    mesh they cannot read was checked (U414), and one expanded past libxml2's amplification
+    limit was "AttributeError: 'NoneType' object has no attribute 'nodes'"; an entity in the
+    <asset>'s author changes no geometry."""
+    import re
+
+    sphere = _collada(f"<node id=\"n\">{INSTANCE}</node>")
+    first = re.search(r"<p>(\S+ \S+ \S+) ", sphere).group(1)
+    doctype = '<!DOCTYPE COLLADA [<!ENTITY t "%s"><!ENTITY u "%s">]>' % (first, "&t;" * 100)
+    body = sphere.split("?>", 1)[-1] if sphere.startswith("<?xml") else sphere
+    used = doctype + body.replace(f"<p>{first} ", "<p>&u; ", 1)
+    author = doctype + body.replace("<asset>", "<asset><contributor><author>&t;</author>"
+                                    "</contributor>", 1)
+    (tmp_path / "used.dae").write_text(used)
+    (tmp_path / "author.dae").write_text(author)
+    robot = _robot(tmp_path, "used.dae")
+    result = run_cli("check", robot, "--jobs", "1", "--no-cache")
+    assert "r.urdf:4: error U412" in result.output, result.output
+    assert "uses the XML entity '&u;' it declares" in result.output
+    robot.write_text(robot.read_text().replace("used.dae", "author.dae"))
+    result = run_cli("check", robot, "--jobs", "1", "--no-cache")
+    assert "U412" not in result.output, result.output
+
+
 def test_collada_count_matches_trimesh_on_a_plain_mesh(tmp_path):
     trimesh = pytest.importorskip("trimesh")
     pytest.importorskip("collada")

@@ -12,7 +12,8 @@ from pathlib import Path
 
 from urdftool.diagnostics import Location, display_path, line_at, lines_of
 from urdftool.description.files import TooLarge, read_regular
-from urdftool.description.xml import XmlProblem, merge_conflict, start_tag_lines, tinyxml2_comments
+from urdftool.description.xml import XmlProblem, entity_uses, merge_conflict, start_tag_lines, \
+    tinyxml2_comments
 from urdftool.records import Record
 
 MAX_SIZE = 16 * 1024 * 1024
@@ -342,39 +343,28 @@ def read_srdf(path: Path, as_: str = SRDF_READ_AS) -> SrdfFile:
 
 
 def _entities_kept(text: str) -> tuple[str, str | None, int | None]:
-    """(the SRDF as srdfdom reads it, why it differs): an entity the file declares and uses
-    (``<!ENTITY g "head">``, ``<group name="&g;">``) is expanded by libxml2 (lxml) and kept as
-    those characters by srdfdom's TinyXML2, which skips the DOCTYPE (measured through urdfdom
-    6.0's check_urdf, the same TinyXML2: ``<link name="&g;">`` is the link ``&g;``); each such
-    reference is then written as its characters (``&amp;g;``: lines unchanged), so that no
-    name is checked that MoveIt does not read; the line of the first use. (text, None, None)
-    for nearly every SRDF."""
-    if "<!ENTITY" not in text:
+    """(the SRDF as srdfdom reads it, why it differs, the line of the first difference): an
+    entity the file declares and uses (``<!ENTITY g "head">``, ``<group name="&g;">``) is
+    expanded by libxml2 (lxml) and kept as those characters by srdfdom's TinyXML2, which skips
+    the DOCTYPE (measured through urdfdom 6.0's check_urdf, the same TinyXML2: ``<link
+    name="&g;">`` is the link ``&g;``); each such reference is then written as its characters
+    (``&amp;g;``: lines unchanged), so that no name is checked that MoveIt does not read.
+    (text, None, None) for nearly every SRDF."""
+    data = text.encode()
+    uses = entity_uses(data)
+    if not uses:
         return text, None, None
-    declared = set(_DECLARED.findall(text))
-    body = max(0, text.find("]>", text.rfind("<!ENTITY")))  # (what follows the DOCTYPE)
-    used = []
-
-    def kept(found):
-        if found.group(1) not in declared:
-            return found.group(0)
-        if found.start() > body:
-            used.append((found.group(0), found.start()))
-        return "&amp;" + found.group(0)[1:]
-
-    read = _REFERENCE.sub(kept, text)
-    if not used:
-        return text, None, None
-    return read, (f"declares the entity {used[0][0]!r} and uses it: srdfdom (TinyXML2) expands "
-                  "no entity, so MoveIt reads the characters as written when its launch file "
-                  "loads the SRDF as text (ROS 1's textfile=, a Python launch file reading it), "
-                  "the entity's text when it passes through xacro (MoveItConfigsBuilder); the "
-                  "SRDF is checked as srdfdom reads it; write the text in place of each "
-                  "entity"), line_at(text, used[0][1])
-
-
-_DECLARED = re.compile(r"<!ENTITY\s+([^\s%]\S*)")  # (a general entity; '%' a parameter one)
-_REFERENCE = re.compile(r"&([^\s;&<#]+);")
+    pieces, at = [], 0
+    for written, offset in uses:
+        pieces += [data[at:offset], b"&amp;", written[1:]]
+        at = offset + len(written)
+    read = b"".join([*pieces, data[at:]]).decode()
+    return read, (f"declares the entity '{uses[0][0].decode()}' and uses it: srdfdom (TinyXML2) "
+                  "expands no entity, so MoveIt reads the characters as written when its "
+                  "launch file loads the SRDF as text (ROS 1's textfile=, a Python launch file "
+                  "reading it), the entity's text when it passes through xacro "
+                  "(MoveItConfigsBuilder); the SRDF is checked as srdfdom reads it; write the "
+                  "text in place of each entity"), line_at(data, uses[0][1])
 
 
 # What srdfdom reads of an attribute untrimmed: a joint property's value, a collision pair's

@@ -24,6 +24,7 @@ import warnings
 from pathlib import Path
 
 from urdftool.description.collada import parser
+from urdftool.description.xml import entity_uses
 from urdftool.description.files import TooLarge, inside, read_regular
 from urdftool.description.inputs import MeshLimits
 from urdftool.description.meshes.counting import triangle_count
@@ -95,9 +96,32 @@ def check_size(path: Path, uri: str, limits: MeshLimits, data: bytes,
         raise MeshProblem("format", f"mesh '{uri}' is a zip archive (ZAE), not a COLLADA "
                                     "document; urdftool does not inflate archives: store "
                                     "the .dae uncompressed")
+    used = _entity_in_data(data) if path.suffix.lower() == ".dae" else None
+    if used:  # (pycollada's libxml2 expands it, up to its amplification limit)
+        raise MeshProblem("corrupt", f"mesh '{uri}' uses the XML entity '{used}' it declares: "
+                                     "pycollada expands it, Assimp (RViz) and Gazebo expand no "
+                                     "entity and read those characters where numbers or "
+                                     "names should be; write the text in place")
     triangles = triangle_count(path, data) if count else None
     if triangles is not None:
         refuse_too_many(uri, triangles, limits)
+
+
+def _entity_in_data(data: bytes) -> str | None:
+    """The first use of an entity a COLLADA document declares, outside the elements of its
+    ``<asset>`` that only say who made it (a use there changes no geometry)."""
+    for written, offset in entity_uses(data):
+        start = data.rfind(b"<", 0, offset) + 1
+        name = _TAG_NAME.match(data, start)
+        if name is None or name.group(1).rpartition(b":")[2] not in _ASSET_TEXT:
+            return written.decode("utf-8", "replace")
+    return None
+
+
+_TAG_NAME = re.compile(rb"([^\s/>]+)")
+_ASSET_TEXT = frozenset({b"author", b"authoring_tool", b"comments", b"copyright", b"source_data",
+                         b"title", b"subject", b"keywords", b"revision", b"created",
+                         b"modified", b"author_email", b"author_website"})
 
 
 def refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:

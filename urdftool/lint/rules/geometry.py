@@ -466,6 +466,9 @@ def mesh_too_large(robot):
 def mesh_unreadable(robot):
     """A mesh file exists but does not load (corrupt, truncated or empty).
 
+    Also a COLLADA file that uses an XML entity it declares where geometry or names are
+    written: pycollada (libxml2) expands it, Assimp (RViz) and Gazebo expand none.
+
     Bad: an STL file truncated by a failed download
     Good: a mesh that opens in a mesh viewer
     """
