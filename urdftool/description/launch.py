@@ -659,7 +659,10 @@ def _xml_param(element, when, launch, line) -> None:
     """A ``<param>`` holding a description: ``command=`` (xacro) or ``textfile=`` (a URDF)."""
     command, textfile = element.get("command"), element.get("textfile")
     name = element.get("name") or ""
-    if command and ("xacro" in command or ".urdf" in command):
+    held = _held(command, launch) if command else None
+    if held is not None:
+        launch.actions.append(Description(held, None, (), when, line(element), name))
+    elif command and ("xacro" in command or ".urdf" in command):
         launch.actions.append(Description(substituted(command), None, (), when, line(element), name))
     elif textfile:
         launch.actions.append(Description(None, substituted(textfile), (), when, line(element), name))
@@ -670,6 +673,20 @@ def _xml_param(element, when, launch, line) -> None:
                       and a.fixed and a.name == held.group(1) and a.default is not None), value)
     if value.startswith("$(command") and "xacro" in value:  # ROS 2 XML: value="$(command 'xacro ...')"
         launch.actions.append(Description(substituted(value), None, (), when, line(element), name))
+
+
+def _held(command: str, launch: LaunchFile) -> Value | None:
+    """The command an argument above holds when ``command`` is only that argument and its value
+    (set, or its default) runs xacro or names a URDF: ``<arg name="cmd" default="$(find
+    xacro)/xacro .../drone4.xacro main_camera:=$(arg main_camera)"/>`` then ``<param
+    command="$(arg cmd)"/>`` (COEX Clover's spawn_drone.launch). roslaunch substitutes the
+    argument, then splits the command into words, so the command read is the value written
+    there (a value given at launch for ``cmd`` itself is not followed); None otherwise."""
+    held = _LET_VALUE.fullmatch(command.strip())
+    value = next((a.default for a in reversed(launch.actions) if isinstance(a, Arg)
+                  and held and a.name == held.group(1) and a.default is not None), None)
+    return value if value is not None and ("xacro" in value.text or ".urdf" in value.text) \
+        else None
 
 
 def _rosparam(element, when, line) -> ParamFile | None:

@@ -23,7 +23,7 @@ from urdftool.description.robot import LoadNote, Robot
 from urdftool.description.packages import PackageResolver, containment_root, link_out
 from urdftool.description.run_memo import one_run
 from urdftool.description.xml import XmlProblem, parse, refuse_empty_or_binary, tinyxml2_comments
-from urdftool.description.urdf import is_xacro
+from urdftool.description.urdf import is_xacro_element
 
 XACRO_SUFFIXES = (".xacro",)
 
@@ -36,14 +36,13 @@ def first_xacro_use(root, substitutions: bool = True):
     ``substitutions`` False: the document's bytes hold no ``${`` or ``$(`` that could reach
     an attribute or a text (:func:`_may_substitute`), so only a tag is looked at."""
     if not substitutions:  # (every xacro tag holds the word: a C test first)
-        return next((e for e in root.iter(etree.Element) if "xacro" in e.tag and is_xacro(e.tag)),
-                    None)
+        return next((e for e in root.iter(etree.Element) if is_xacro_element(e)), None)
     return next((e for e in root.iter(etree.Element) if _needs_xacro(e)), None)
 
 
 def _needs_xacro(element) -> bool:
     """A xacro tag, or a ``${}``/``$()`` in one of its attributes or its text."""
-    return is_xacro(element.tag) or _substitutes(element.text) or \
+    return is_xacro_element(element) or _substitutes(element.text) or \
         any(_substitutes(value) for value in element.attrib.values())
 
 
@@ -259,7 +258,7 @@ def _filled(plain: Robot, first, data, args, allow_env, limit, filling, named: s
     where = plain.locate(first)
     used = set(_SUBSTITUTED.findall(data.decode("utf-8", "replace")))
     root = first.getroottree().getroot()
-    certain = not any(is_xacro(e.tag) for e in root.iter(etree.Element)) and all(
+    certain = not any(is_xacro_element(e) for e in root.iter(etree.Element)) and all(
         None not in b.replaced and all(any(text in old for old in b.replaced) for text in used)
         for b in filling)
     names = list(dict.fromkeys(b.named for b in filling))
@@ -303,7 +302,7 @@ def _shown_use(element) -> str:
     text holding ``${...}``/``$(...)`` (not the bare tag: ``<color>`` alone says nothing of the
     ``rgba="${255/255} ..."`` in it)."""
     tag = _shown_tag(element)
-    if is_xacro(element.tag):
+    if is_xacro_element(element):
         return f"<{tag}>"
     for name, value in element.attrib.items():
         if _substitutes(value):

@@ -1230,3 +1230,78 @@ def state_publishers(robot) -> list[tuple[Configuration, Started]]:
     facts = runtime(robot)
     return [found for package in STATE_PUBLISHERS for found in facts.starts(package)]
 
+
+
+# the nodes that publish a fixed transform: (package, executable) -> the words its command line
+# takes after the two frames (ROS 1 tf's takes a period in milliseconds, tf2_ros' none)
+STATIC_PUBLISHERS = {("tf2_ros", "static_transform_publisher"): 0,
+                     ("tf", "static_transform_publisher"): 1}
+
+
+class Published(Frozen):
+    """A frame a launch configuration of the robot publishes with a static_transform_publisher:
+    its parent frame, where (the launch file and line, and the one run), and when, in words
+    (empty when every run of that launch file publishes it)."""
+
+    frame: str
+    parent: str
+    where: str
+    condition: str
+
+    __slots__ = ("frame", "parent", "where", "condition")
+
+    def __init__(self, frame: str, parent: str, where: str, condition: str) -> None:
+        set_field = object.__setattr__
+        set_field(self, "frame", frame)
+        set_field(self, "parent", parent)
+        set_field(self, "where", where)
+        set_field(self, "condition", condition)
+
+
+def static_frames(robot) -> dict[str, Published]:
+    """The frames the robot's launch configurations publish with tf2_ros' or ROS 1 tf's
+    static_transform_publisher, by name (the first configuration's; once per robot): frames
+    that TF knows while the robot runs with that launch file though no link is named so
+    (COEX Clover's ``main_camera_optical``)."""
+    def build():
+        found: dict[str, Published] = {}
+        for (package, executable), trailing in STATIC_PUBLISHERS.items():
+            for configuration, start in runtime(robot).starts(package, (executable,)):
+                frames = _published_frames(start, trailing)
+                if frames is None or frames[1] in found:
+                    continue
+                at = f"{start.launch}:{start.line or '?'}"
+                where = named(at) if start.launch == configuration.display else \
+                    f"{named(at)} (run by {configuration.named})"
+                found[frames[1]] = Published(frames[1], frames[0], where,
+                                             " and ".join(start.when.words))
+        return found
+
+    return robot.memo(static_frames, build)
+
+
+def _published_frames(start: Started, trailing: int) -> tuple[str, str] | None:
+    """(parent, child) a static_transform_publisher's words name: ROS 2's ``--frame-id P
+    --child-frame-id C``, else the last two positional words before ``trailing`` ones
+    (``x y z yaw pitch roll P C`` or ``x y z qx qy qz qw P C``); None when not read."""
+    if any(argument.text is None for argument in start.arguments):
+        return None
+    words = [word for argument in start.arguments for word in argument.text.split()]
+    flags, positional, index = {}, [], 0
+    while index < len(words):
+        word = words[index]
+        if word == "--ros-args":
+            break
+        if word.startswith("--"):
+            flags[word] = words[index + 1] if index + 1 < len(words) else ""
+            index += 2
+            continue
+        if ":=" not in word:  # ROS 1's __name:=... remappings
+            positional.append(word)
+        index += 1
+    if "--child-frame-id" in flags:
+        return flags.get("--frame-id", "").strip("/"), flags["--child-frame-id"].strip("/")
+    positional = positional[:len(positional) - trailing]
+    if len(positional) not in (8, 9):
+        return None
+    return positional[-2].strip("/"), positional[-1].strip("/")

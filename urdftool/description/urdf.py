@@ -231,6 +231,14 @@ def is_xacro(tag) -> bool:
                                      or tag.startswith("{urn:undeclared:xacro}"))
 
 
+def is_xacro_element(element) -> bool:
+    """Whether an lxml element is xacro's. xacro reads tag names as written (minidom), so
+    ``xacro:if`` is its tag whatever URI the document binds the prefix to:
+    ``http://wiki.ros.org/xacro`` (672 files of the real sweep, mycobot_ros2's among them),
+    ``.../xacro/#interface``, Gazebo's old ``playerstage`` schema; the prefix decides."""
+    return is_xacro(element.tag) or getattr(element, "prefix", None) == "xacro"
+
+
 def is_namespaced(name) -> bool:
     """Whether an lxml tag or attribute name has a namespace (``drake:``, ``xacro:``, ...):
     such names belong to another reader, never to urdfdom."""

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular, real_path
 from urdftool.description.packages import PackageResolver, containment_root
+from urdftool.description.urdf import is_xacro_element
 
 # What a fragment of a robot defined elsewhere holds besides definitions (X.gazebo.xacro): the
 # blocks that extend links and joints written by the robot that includes it, and a top-level
@@ -357,7 +358,7 @@ def condition_dropping(data: bytes, line: int, tag: str, wanted: str) -> list[tu
         if position is None or position[0] != line or local_name(element.tag) != tag:
             continue
         for condition in element.iter():
-            if condition is element or not is_xacro(condition.tag) or \
+            if condition is element or not is_xacro_element(condition) or \
                     local_name(condition.tag) not in ("if", "unless"):
                 continue
             if any(local_name(inner.tag) == wanted for inner in condition.iter()

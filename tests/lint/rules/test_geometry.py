@@ -392,3 +392,18 @@ def test_a_missing_mesh_says_where_the_repository_has_a_file_of_its_name(tmp_pat
     (tmp_path / "other").mkdir()
     (tmp_path / "other/base.stl").write_text("solid s\nendsolid s\n")
     assert "the repository's" not in message("base.stl")  # two of that name: no choosing
+
+
+def test_an_empty_package_name_before_a_bare_file_name_is_not_advised_as_a_package(tmp_path):
+    """Open Duck Mini's onshape-to-robot export writes 'package:///foot_bottom_pla.stl' (the
+    meshes beside the URDF): U415 advised writing 'package://foot_bottom_pla.stl/', a package
+    named as the file with an empty path."""
+    (tmp_path / "foot.stl").write_bytes(b"solid s\nendsolid s\n")
+    text = ('<robot name="r"><link name="a"><visual><geometry><mesh filename="package:///foot.stl"/>'
+            '</geometry></visual></link></robot>')
+    from crossfile_helpers import check_folder
+
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U415",))
+    [message] = [f.message for f in findings if f.code == "U415"]
+    assert "package://foot.stl/" not in message, message
+    assert "'package://PACKAGE/foot.stl'" in message, message

@@ -683,3 +683,22 @@ def test_u310s_command_quotes_the_link_so_alike_links_are_one_report_line(tmp_pa
     assert "`urdftool inertia --link 'cup0'` computes it" in found[0][1]
     result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(("U310",))))
     assert len(groups(result.findings)) == 1
+
+
+def test_an_indefinite_tensor_says_when_no_sign_of_a_product_can_mend_it(tmp_path):
+    """LimX's contact links: ixx = iyy = izz = 1e-12 beside ixz = 4e-06. The product is far
+    beyond what its two moments allow (|ixz| <= sqrt(ixx izz)), so flipping a sign, which the
+    message advised, changes nothing; a tensor whose products fit their moments one pair at a
+    time is still told to check the signs."""
+    link = ('<link name="{name}"><inertial><mass value="1"/><inertia ixx="{d}" ixy="{xy}"'
+            ' ixz="{xz}" iyy="{d}" iyz="{yz}" izz="{d}"/></inertial></link>')
+    joint = ('<joint name="j{n}" type="revolute"><parent link="a"/><child link="{name}"/>'
+             '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>')
+    text = ('<robot name="r"><link name="a"/>'
+            + link.format(name="contact", d="1e-12", xy="0", xz="0.000004", yz="0")
+            + link.format(name="signs", d="1", xy="0.9", xz="0.9", yz="-0.9")
+            + joint.format(n=1, name="contact") + joint.format(n=2, name="signs") + "</robot>")
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U305",))
+    messages = {f.message.split("'")[1]: f.message for f in findings}
+    assert "sqrt(ixx izz)" in messages["contact"] and "signs" not in messages["contact"], messages
+    assert "check the signs of ixy, ixz, iyz" in messages["signs"], messages

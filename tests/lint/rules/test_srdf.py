@@ -348,3 +348,16 @@ def test_subgroups_leading_to_a_cycle_through_a_long_chain_are_walked_without_re
     assert found == [("robot.srdf", 5002, "U824")]
     assert "('g5000' > 'x' > 'g5000')" in findings[0].message and findings[0].message.count(", g") == 4 \
         and "g4999, g4998" not in findings[0].message and ", ..." in findings[0].message
+
+
+def test_an_unknown_srdf_joint_is_offered_moveits_joints_only(tmp_path):
+    """StanleyInnovation's robotiq_85_gripper.srdf names kinova_robotiq_coupler_joint, which the
+    URDF lacks: the joints offered are the URDF's and the SRDF's virtual joints, which MoveIt
+    knows; Pinocchio's 'root_joint', accepted so that its group states pass, is no joint MoveIt
+    has, and was offered as one."""
+    body = """<virtual_joint name="world_joint" type="fixed" parent_frame="world" child_link="base_link"/>
+<group name="gripper"><joint name="coupler_joint"/></group>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "robot.srdf": srdf(body)})
+    [message] = [f.message for f in findings if f.code == "U803"]
+    assert "world_joint" in message and "head_joint" in message
+    assert "root_joint" not in message, message

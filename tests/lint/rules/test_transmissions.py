@@ -420,3 +420,41 @@ def test_no_plugin_as_checked_whose_source_gives_one_under_an_argument_is_a_warn
                                                'value="false"><plugin>'))
     findings = [f for f in load_and_check(str(robot), CheckOptions()).findings if f.code == "U514"]
     assert [f.severity for f in findings] == [Severity.ERROR]
+
+
+def test_no_plugin_built_otherwise_names_first_the_arguments_its_plugin_depends_on(tmp_path):
+    """Automatic Addison's mycobot_ros2: the <plugin> is under xacro:if use_gazebo, and the
+    launch file gives add_world, base_link, base_type, flange_link and use_gazebo values known
+    only at launch; the message named the first four (alphabetically) and left out use_gazebo,
+    the one that decides."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "arm_description/urdf/arm.urdf.xacro"
+    robot.parent.mkdir(parents=True)
+    (tmp_path / "arm_description/package.xml").write_text(
+        "<package format='2'><name>arm_description</name></package>")
+    names = ("add_world", "base_link", "base_type", "flange_link", "use_gazebo")
+    robot.write_text('<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                     + "".join(f'<xacro:arg name="{n}" default="false"/>' for n in names) + """
+  <link name="base"/>
+  <ros2_control name="arm" type="system"><hardware>
+    <xacro:if value="$(arg use_gazebo)"><plugin>gz_ros2_control/GazeboSimSystem</plugin></xacro:if>
+  </hardware></ros2_control>
+</robot>""")
+    launch = tmp_path / "arm_description/launch/rsp.launch.py"
+    launch.parent.mkdir()
+    given = ", ".join(f'" {n}:=", LaunchConfiguration("{n}")' for n in names)
+    launch.write_text(f'''
+from launch.substitutions import Command, LaunchConfiguration
+from launch_ros.substitutions import FindPackageShare
+
+def generate_launch_description():
+    return [Node(package="robot_state_publisher", executable="robot_state_publisher",
+                 parameters=[{{"robot_description": Command(["xacro ", FindPackageShare("arm_description"),
+                                                            "/urdf/arm.urdf.xacro", {given}])}}])]
+''')
+    findings = [f for f in load_and_check(str(robot), CheckOptions()).findings if f.code == "U514"]
+    assert [f.severity for f in findings] == [Severity.WARNING]
+    assert "builds it with use_gazebo:=(known only at launch), add_world:=" in \
+        findings[0].message, findings[0].message

@@ -419,3 +419,13 @@ def test_a_scalar_ending_with_a_raw_line_break_is_quoted_as_written(tmp_path):
     assert found == [("robot.urdf", 2, "U023")]
     assert '<inertia ixz="-0.5\\n">' in findings[0].message  # (a line break, CR LF or LF)
     assert [edit.text for edit in findings[0].fix.edits] == ["-0.5"]
+
+
+def test_a_place_is_named_once_though_urdfdom_reads_the_element_in_two_kinds_of_it(tmp_path):
+    """LimX's exporter writes <color> directly in <visual>: urdfdom reads <color> in a visual's
+    <material> and in a <robot>'s global <material>, both <material>; it said 'only in
+    <material>, <material>'."""
+    found, findings = _check(tmp_path, """<robot name="r"><link name="a"><visual>
+      <geometry><box size="1 1 1"/></geometry><color rgba="1 0 0 1"/></visual></link></robot>""")
+    assert [c for _, _, c in found] == ["U022"]
+    assert findings[0].message.endswith("urdfdom reads it only in <material>"), findings[0].message

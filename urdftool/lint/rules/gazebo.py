@@ -12,7 +12,7 @@ from urdftool.description.values import origin, parse_numbers
 from urdftool.errors import available
 from urdftool.description import gazebo_plugins as vocabulary
 from urdftool.description.ros_version import ros_version, ros_versions
-from urdftool.description.runtime import runtime
+from urdftool.description.runtime import runtime, static_frames
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.controllers import runs_of
 from urdftool.lint.rules.controllers import hedged
@@ -326,7 +326,9 @@ def sensor_unknown_link(robot):
     (``frameName``, ``bodyName``) strip a leading ``/``: ``/camera_link`` is ``camera_link``;
     ROS 2's tf2 refuses a frame id that starts with ``/``. A name ``NAMESPACE/LINK`` is the link
     under a TF prefix (robot_state_publisher's ``frame_prefix``, ROS 1's ``tf_prefix``) that a
-    launch file chooses: not judged. A ROS 1 ``frameName`` that is ``LINK`` where the robot's
+    launch file chooses: not judged. A frame that is no link but that a launch file of the
+    robot publishes with a static_transform_publisher (tf2_ros', ROS 1 tf's) is in TF while that
+    launch file runs (COEX Clover's ``main_camera_optical``): a note naming it. A ROS 1 ``frameName`` that is ``LINK`` where the robot's
     link is ``NAMESPACE/LINK`` (RotorS writes its links ``${namespace}/...`` and the frames
     without it) is right when the plugin's ``tf_prefix`` parameter is ``NAMESPACE``, which
     ROS 1's sensor plugins prefix the frame with (or, when none is set, with their
@@ -374,6 +376,14 @@ def sensor_unknown_link(robot):
                         f"sensor plugins prefix <{tag}> with it, or with their "
                         f"<robotNamespace> when none is set): <{tag}> '{name}' is not a link, "
                         f"'{prefixed[0]}' is, so TF cannot place the data stamped with it")
+                elif name and name in static_frames(robot):
+                    published = static_frames(robot)[name]
+                    when = f" {published.condition}" if published.condition else ""
+                    yield element, Conditional(
+                        f"<{tag}> '{name}' is not a link; {published.where} publishes it with a "
+                        f"static_transform_publisher from '{published.parent}'{when}, so TF "
+                        "places the data stamped with it only while that launch file runs",
+                        Severity.INFO)
                 elif name and name not in robot.links and name not in GAZEBO_FRAMES:
                     own = (f"use '{reference}', the link it sits on, or add a link '{name}'"
                            if reference in robot.links else available("links", name, robot.links))

@@ -624,7 +624,9 @@ def empty_package_name(robot):
     Pinocchio looks the path after ``package://`` up below each of its package directories, so
     this form works there, and urdftool resolves it the same way (``NAME`` as the package). ROS's
     resource_retriever, which RViz, Gazebo and MoveIt load meshes through, takes the empty text
-    before the third slash as the package name and fails.
+    before the third slash as the package name and fails. A bare file name after the third
+    slash (``package:///foot.stl``, as onshape-to-robot writes with no package) names no
+    package at all: the message says to put the file in one.
 
     Bad: ``<mesh filename="package:///talos_data/meshes/arm.stl"/>``
     Good: ``<mesh filename="package://talos_data/meshes/arm.stl"/>``
@@ -635,6 +637,13 @@ def empty_package_name(robot):
         uri = shape.get("filename")
         if uri.startswith("package:///"):
             name, tail = package_uri_parts(uri)
+            if not tail:  # 'package:///foot.stl': a file name, no folder to take for the package
+                yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh '{uri}' has an "
+                              f"empty package name and no folder; Pinocchio looks '{name}' up "
+                              "directly in its package directories, ROS's resource_retriever "
+                              "(RViz, Gazebo, MoveIt) cannot resolve it: put the file in a "
+                              f"package and write 'package://PACKAGE/{name}'")
+                continue
             yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh '{uri}' has an empty "
                           f"package name; Pinocchio (and urdftool) read it as package '{name}', "
                           "ROS's resource_retriever (RViz, Gazebo, MoveIt) cannot resolve it: "

@@ -379,7 +379,9 @@ def inertia_indefinite(robot):
     """The products of inertia (ixy, ixz, iyz) make the inertia tensor indefinite.
 
     A principal moment is negative although every diagonal moment is positive. No rigid body has such a tensor; a sign or transcription error is likely (e.g. a CAD tool
-    reporting products of inertia with the opposite sign convention).
+    reporting products of inertia with the opposite sign convention). A product larger than
+    its two moments allow (``|ixz| <= sqrt(ixx izz)`` for any body) no sign mends: the message
+    says so, and that the moments or products are placeholders or another part's.
 
     Fix (unsafe): the inertia computed from the link's geometry at its declared mass.
 
@@ -394,8 +396,26 @@ def inertia_indefinite(robot):
                              _scaled(NEGATIVE_FLOOR, properties.mass)):
             yield _recomputed(robot, link, properties, (
                 f"link '{_name(link)}': principal moments "
-                f"{', '.join(number(m) for m in moments)} include a negative one; check the "
-                "signs of ixy, ixz, iyz"))
+                f"{', '.join(number(m) for m in moments)} include a negative one; "
+                + _indefinite_why(properties.inertia)))
+
+
+# a product of inertia and the two moments that bound it: (name, row, column)
+_PRODUCTS = (("ixy", 0, 1), ("ixz", 0, 2), ("iyz", 1, 2))
+
+
+def _indefinite_why(inertia) -> str:
+    """What to look at in an indefinite tensor: a product larger than its two moments allow
+    (|ixz| <= sqrt(ixx izz) for any body), which no sign mends (LimX's contact links: 1e-12 on
+    the diagonal beside ixz 4e-06), else the signs of the products."""
+    names = ("ixx", "iyy", "izz")
+    for name, row, column in _PRODUCTS:
+        product, bound = inertia[row][column], inertia[row][row] * inertia[column][column]
+        if product * product > bound * (1 + 1e-6) and bound >= 0:
+            return (f"{name} {number(product)} is beyond sqrt({names[row]} {names[column]}) = "
+                    f"{number(math.sqrt(bound))}, which no sign of it mends: the moments or the "
+                    "products are placeholders, another part's or in other units")
+    return "check the signs of ixy, ixz, iyz"
 
 
 @rule("U306", "inertia-triangle-inequality", Severity.ERROR)

@@ -131,12 +131,14 @@ def srdf_unknown_joint(robot):
     if srdf is None:
         return
     known = set(robot.joints) | _virtual_joints(srdf)
+    # offered: the joints MoveIt has (the URDF's, the SRDF's virtual ones), not Pinocchio's name
+    offered = set(robot.joints) | {v.get("name") for v in srdf.root.iterfind("virtual_joint")}
     for element in _elements(srdf, "group/joint", "group_state/joint", "passive_joint"):
         name = element.get("name")
         if name not in known:
             yield srdf.at(element.sourceline), (
                 f"SRDF <{element.getparent().tag if element.tag == 'joint' else element.tag}> names "
-                f"joint '{name}', which is not in the URDF; " + available('joints', name or '', known))
+                f"joint '{name}', which is not in the URDF; " + available('joints', name or '', offered))
 
 
 @rule("U804", "srdf-unknown-link", Severity.ERROR)

@@ -12,6 +12,7 @@ the condition when both may read it (docs/certainty.md).
 from __future__ import annotations
 
 import functools
+import re
 
 from urdftool.description.ros_version import ros_versions
 from urdftool.description.runtime import (STATE_PUBLISHERS, built_as_checked, built_otherwise,
@@ -529,6 +530,7 @@ def ros2_control_no_plugin(robot):
                 _plugin_condition(robot, hardware)
             if otherwise:
                 build, other = otherwise[0]
+                other = _deciding_first(other, _plugin_condition(robot, hardware))
                 more = f" (and {len(otherwise) - 1} more)" if len(otherwise) > 1 else ""
                 message = Conditional(
                     f"{named} with the xacro arguments the robot is checked with; "
@@ -543,6 +545,13 @@ def ros2_control_no_plugin(robot):
             else:
                 message = f"{named}; {example}"
             yield (hardware if hardware is not None else block), message
+
+
+def _deciding_first(given: list[str], condition: str | None) -> list[str]:
+    """The arguments a build gives (``name:=value``), those the condition on the ``<plugin>``
+    names first (mycobot_ros2's use_gazebo, after add_world, base_link, ... alphabetically)."""
+    words = set(re.findall(r"\w+", condition or ""))
+    return sorted(given, key=lambda text: text.partition(":=")[0] not in words)
 
 
 def _plugin_condition(robot, hardware) -> str | None:

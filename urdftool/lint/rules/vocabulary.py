@@ -365,8 +365,9 @@ def no_effect(robot):
             unread.setdefault(unknown.element, []).append(unknown.attribute)
         else:
             places = [p for p in where_valid(unknown.name) if p != unknown.place]
-            hint = ("; urdfdom reads it only in " + ", ".join(f"<{_tag(p)}>" for p in places)
-                    if places else _read_elsewhere(unknown))
+            tags = dict.fromkeys(f"<{_tag(p)}>" for p in places)  # a visual's and a global <material>
+            hint = ("; urdfdom reads it only in " + ", ".join(tags) if places
+                    else _read_elsewhere(unknown))
             yield unknown.element, f"{_what(unknown)} has no effect: {_unread(1)}{hint}"
     for element, names in unread.items():
         listed = ", ".join(f"'{name}'" for name in names)
