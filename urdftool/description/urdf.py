@@ -226,9 +226,14 @@ def is_urdf_name(name: str) -> bool:
 
 
 def is_xacro(tag) -> bool:
-    """Whether an element tag (lxml: ``{uri}local``, or a raw ``xacro:`` name) is xacro's."""
-    return isinstance(tag, str) and (tag.startswith("xacro:") or "ros.org/wiki/xacro}" in tag
-                                     or tag.startswith("{urn:undeclared:xacro}"))
+    """Whether an element tag (lxml: ``{uri}local``, or a raw ``xacro:`` name) is xacro's, where
+    only the tag is known (a parser target's): by the URIs the real sweep binds ``xacro:`` to
+    (``http://www.ros.org/wiki/xacro``, ``http://ros.org/wiki/xacro``, ``http://wiki.ros.org/xacro``,
+    ``.../xacro/#interface``, ``...#xacro``). With the element at hand, :func:`is_xacro_element`
+    asks its prefix too, as xacro does."""
+    return isinstance(tag, str) and (tag.startswith(("xacro:", "{urn:undeclared:xacro}"))
+                                     or "/xacro}" in tag or "xacro/#interface}" in tag
+                                     or "#xacro}" in tag)
 
 
 def is_xacro_element(element) -> bool:

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, inside, read_regular, real_path
 from urdftool.description.packages import PackageResolver, containment_root
-from urdftool.description.urdf import is_xacro_element
+from urdftool.description.urdf import is_xacro, is_xacro_element
 
 # What a fragment of a robot defined elsewhere holds besides definitions (X.gazebo.xacro): the
 # blocks that extend links and joints written by the robot that includes it, and a top-level
@@ -85,10 +85,6 @@ def local_name(tag) -> str:
     """A tag's name without namespace or prefix (lxml in recover mode keeps an undeclared
     ``xacro:`` prefix in the name)."""
     return tag.rpartition("}")[2].rpartition(":")[2] if isinstance(tag, str) else ""
-
-
-def is_xacro(tag) -> bool:
-    return isinstance(tag, str) and ("ros.org/wiki/xacro}" in tag or tag.startswith("xacro:"))
 
 
 class _Answered(Exception):
