@@ -706,6 +706,13 @@ def inertia_far_from_geometry(robot):
     adds: nothing (no larger: youbot's wheels; a link drawn only with a visual is judged from
     it), or that not all of it could be measured (a mesh missing), when it could not tell.
 
+    A **note** too when the link is welded by fixed joints to other links and its geometry's
+    tensor in place of the declared one would change the trace of the whole rigid body's
+    inertia by under 1 %: every simulator moves welded links as one body (Gazebo and MuJoCo
+    lump them, Pinocchio merges them into the parent, Bullet and Drake sum them), so the error
+    is lost in the body's (Unitree G1's 1 g contour and support links, fixed to a 4 kg pelvis
+    and a torso: 11 rows of the real sweep).
+
     Bad: a 0.1 kg, 10 x 3 x 3 cm camera with ``ixx="0.0016" iyy="0.0016" izz="0.0016"``
     (24 times its box's)
     Good: ``ixx="1.5e-5" iyy="9.1e-5" izz="9.1e-5"`` (``urdftool inertia`` computes them)
@@ -745,7 +752,44 @@ def inertia_far_from_geometry(robot):
         if held:
             message = Conditional("if the collision geometry is the body's shape, not a "
                                   f"simplification smaller than it: {message}", Severity.INFO)
+        lumped = _negligible_where_fixed(robot, link, properties, expected)
+        if lumped is not None:  # welded to a heavier body: its error is lost in the body's
+            yield _inertial_part(link, "inertia"), f"{message}; {lumped}", None, Severity.INFO
+            continue
         yield _inertial_part(link, "inertia"), message
+
+
+FIXED_SHARE = 0.01  # of a rigid body's inertia: a link's tensor error below it changes nothing
+
+
+def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
+    """What to say when ``link`` is welded by fixed joints to other links and replacing its
+    declared tensor by its geometry's (``expected``) changes the trace of the whole rigid
+    body's inertia by under FIXED_SHARE (a 1 g placeholder on a contour mesh fixed to a 4 kg
+    pelvis: Unitree's G1); else None. Every simulator moves welded links as one body (Gazebo and
+    MuJoCo lump them, Pinocchio merges them into the parent, Bullet and Drake sum them in the
+    composite), so only the body's tensor matters, and this link's error is lost in it."""
+    name = _name(link)
+    members = solids.rigid_group(robot, name)
+    if len(members) < 2:
+        return None
+    body = solids.rigid_declared(robot, name)
+    if body is None:
+        return None
+    whole = mat3.trace(body.inertia)
+    change = abs(mat3.trace(expected.inertia) - mat3.trace(properties.inertia))
+    if not whole > 0 or change >= FIXED_SHARE * whole:
+        return None
+    def mass(member: str) -> float:
+        declared = declared_of(robot, robot.links[member]) if member in robot.links else None
+        return declared.mass if declared is not None and math.isfinite(declared.mass) else 0.0
+
+    heaviest = max((m for m in members if m != name), key=mass)
+    others = f" and {len(members) - 2} more" if len(members) > 2 else ""
+    return (f"negligible where it is: fixed joints make '{name}' one body with '{heaviest}'"
+            f"{others}, whose inertia (trace {number(whole, 3)} kg m^2) this tensor changes by "
+            f"under {number(FIXED_SHARE * 100, places=0)} %, and simulators move that body "
+            "as one")
 
 
 def _drawn_bound(robot, link, properties, solid) -> float | None:
