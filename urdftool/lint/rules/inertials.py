@@ -1033,6 +1033,9 @@ def com_outside_hull(robot):
     frame's placeholder inertial (a link without geometry of its own whose centre of mass is
     its origin: a tool centre point between a gripper's fingers).
     Farther out than the geometry's size is U307's, an origin copied from the joint U313's.
+    A centre of mass at the link's own origin (no ``<origin>``, or xyz 0 0 0) is said to be
+    one: an inertial left on the joint rather than placed where the parts are (the old
+    ur_description's wrists, 8 to 12 cm from the centres of mass UR's own description gives).
 
     A **note** when the centre of mass lies inside the drawn geometry of a link a joint moves
     against this one (its parent, a child): Gazebo, Bullet, MuJoCo and Pinocchio put the mass
@@ -1081,6 +1084,15 @@ def com_outside_hull(robot):
                 f"against it: right if parts drawn with '{neighbour}' move with "
                 f"'{_name(link)}' (a motor's rotor, a gear), else the inertial is another part's"), \
                 None, Severity.INFO
+            continue
+        if properties.com == (0.0, 0.0, 0.0):  # the link's origin, on its joint: a placeholder
+            yield first_child(link, "inertial"), (
+                f"link '{_name(link)}': centre of mass (0 0 0), the link's own origin, is at "
+                f"least {number(outside * 1000, places=0)} mm outside the convex hull of its "
+                f"visual and collision geometry{fixed}, where no body has its centre of mass: "
+                "an inertial left at the link's origin (no <origin>, or xyz 0 0 0) rather than "
+                "placed where the link's parts are, unless the link's mass holds parts drawn "
+                "with a neighbouring link (a motor on the joint's axis)")
             continue
         yield first_child(link, "inertial"), (
             f"link '{_name(link)}': centre of mass ({' '.join(f'{number(v, 4)}' for v in properties.com)}) "
