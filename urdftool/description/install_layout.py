@@ -531,6 +531,8 @@ class _CMake:
         top = os.path.normpath(self.reader.root)
         found = []
         for pattern in patterns:
+            if _BUILD in pattern:  # the build folder's entries: written by the build
+                return _UNKNOWN
             parent, leaf = os.path.split(os.path.normpath(os.path.join(folder, pattern)))
             if _MAGIC.search(parent) or "|" in leaf or not leaf or not (
                     parent == top or parent.startswith(top.rstrip(os.sep) + os.sep)):

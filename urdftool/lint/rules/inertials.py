@@ -1035,7 +1035,7 @@ def com_outside_hull(robot):
     Farther out than the geometry's size is U307's, an origin copied from the joint U313's.
     A centre of mass at the link's own origin (no ``<origin>``, or xyz 0 0 0) is said to be
     one: an inertial left on the joint rather than placed where the parts are (the old
-    ur_description's wrists, 8 to 12 cm from the centres of mass UR's own description gives).
+    ur_description's wrists, 6 to 12 cm from the centres of mass UR's own description gives).
 
     A **note** when the centre of mass lies inside the drawn geometry of a link a joint moves
     against this one (its parent, a child): Gazebo, Bullet, MuJoCo and Pinocchio put the mass
