@@ -707,8 +707,8 @@ def inertia_far_from_geometry(robot):
     it), or that not all of it could be measured (a mesh missing), when it could not tell.
 
     A **note** too when the link is welded by fixed joints to other links and its geometry's
-    tensor in place of the declared one would change the trace of the whole rigid body's
-    inertia by under 1 %: every simulator moves welded links as one body (Gazebo and MuJoCo
+    tensor in place of the declared one would change the whole rigid body's inertia by under
+    1 % of its least principal moment, about any axis: every simulator moves welded links as one body (Gazebo and MuJoCo
     lump them, Pinocchio merges them into the parent, Bullet and Drake sum them), so the error
     is lost in the body's (Unitree G1's 1 g contour and support links, fixed to a 4 kg pelvis
     and a torso: 11 rows of the real sweep).
@@ -764,9 +764,9 @@ FIXED_SHARE = 0.01  # of a rigid body's inertia: a link's tensor error below it 
 
 def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
     """What to say when ``link`` is welded by fixed joints to other links and replacing its
-    declared tensor by its geometry's (``expected``) changes the trace of the whole rigid
-    body's inertia by under FIXED_SHARE (a 1 g placeholder on a contour mesh fixed to a 4 kg
-    pelvis: Unitree's G1); else None. Every simulator moves welded links as one body (Gazebo and
+    declared tensor by its geometry's (``expected``) changes the whole rigid body's inertia by
+    under FIXED_SHARE of its least principal moment, about any axis (a 1 g placeholder on a
+    contour mesh fixed to a 4 kg pelvis: Unitree's G1); else None. Every simulator moves welded links as one body (Gazebo and
     MuJoCo lump them, Pinocchio merges them into the parent, Bullet and Drake sum them in the
     composite), so only the body's tensor matters, and this link's error is lost in it."""
     name = _name(link)
@@ -776,9 +776,12 @@ def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
     body = solids.rigid_declared(robot, name)
     if body is None:
         return None
-    whole = mat3.trace(body.inertia)
-    change = abs(mat3.trace(expected.inertia) - mat3.trace(properties.inertia))
-    if not whole > 0 or change >= FIXED_SHARE * whole:
+    # the most the tensor's error turns the body's inertia about any axis, against the
+    # body's least moment: under FIXED_SHARE of it about every axis
+    error = tuple(tuple(e - d for e, d in zip(row, declared))
+                  for row, declared in zip(expected.inertia, properties.inertia))
+    least, whole = mat3.eigvalsh(body.inertia)[0], mat3.trace(body.inertia)
+    if not least > 0 or max(abs(v) for v in mat3.eigvalsh(error)) >= FIXED_SHARE * least:
         return None
     def mass(member: str) -> float:
         declared = declared_of(robot, robot.links[member]) if member in robot.links else None
@@ -788,8 +791,8 @@ def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
     others = f" and {len(members) - 2} more" if len(members) > 2 else ""
     return (f"negligible where it is: fixed joints make '{name}' one body with '{heaviest}'"
             f"{others}, whose inertia (trace {number(whole, 3)} kg m^2) this tensor changes by "
-            f"under {number(FIXED_SHARE * 100, places=0)} %, and simulators move that body "
-            "as one")
+            f"under {number(FIXED_SHARE * 100, places=0)} % about any axis, and simulators "
+            "move that body as one")
 
 
 def _drawn_bound(robot, link, properties, solid) -> float | None:
