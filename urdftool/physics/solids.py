@@ -1082,11 +1082,12 @@ def rigid_group(robot, name: str) -> list[str]:
     return order
 
 
-def rigid_declared(robot, name: str) -> mp.Body | None:
+def rigid_declared(robot, name: str, tensors: dict | None = None) -> mp.Body | None:
     """The declared inertials of link ``name``'s rigid body (it and every link joined to it by
     fixed joints, either way) as one body in ``name``'s frame, as Gazebo, MuJoCo and Pinocchio
-    lump them (and as any simulator moves them: welded links move as one); None when none of
-    them has a finite positive mass and a finite tensor."""
+    lump them (and as any simulator moves them: welded links move as one); ``tensors``: link
+    name -> a tensor to take in place of the declared one (about the same centre of mass);
+    None when none of them has a finite positive mass and a finite tensor."""
     parts = []
     for member, (rotation, xyz) in _rigid_frames(robot, name).items():
         link = robot.links.get(member)
@@ -1095,6 +1096,8 @@ def rigid_declared(robot, name: str) -> mp.Body | None:
                 math.isfinite(v) for row in body.inertia for v in row) or not all(
                 math.isfinite(v) for v in body.com):
             continue
+        if tensors and member in tensors:
+            body = mp.Body(body.mass, body.com, tensors[member])
         parts.append(mp.transformed(body, xyz, rotation))
     return mp.combine(parts) if parts else None
 

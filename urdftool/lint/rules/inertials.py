@@ -765,8 +765,10 @@ FIXED_SHARE = 0.01  # of a rigid body's inertia: a link's tensor error below it 
 def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
     """What to say when ``link`` is welded by fixed joints to other links and replacing its
     declared tensor by its geometry's (``expected``) changes the whole rigid body's inertia by
-    under FIXED_SHARE of its least principal moment, about any axis (a 1 g placeholder on a
-    contour mesh fixed to a 4 kg pelvis: Unitree's G1); else None. Every simulator moves welded links as one body (Gazebo and
+    under FIXED_SHARE of its least principal moment, about any axis, that moment read both
+    from the declared tensors and with every measured link's tensor its geometry's (a parent's
+    placeholder ``ixx="300"`` would hide anything) (a 1 g placeholder on a contour mesh fixed
+    to a 4 kg pelvis: Unitree's G1); else None. Every simulator moves welded links as one body (Gazebo and
     MuJoCo lump them, Pinocchio merges them into the parent, Bullet and Drake sum them in the
     composite), so only the body's tensor matters, and this link's error is lost in it."""
     name = _name(link)
@@ -776,11 +778,16 @@ def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
     body = solids.rigid_declared(robot, name)
     if body is None:
         return None
+    # the body again with every measured link's tensor its geometry's: a body whose declared
+    # tensors are too large (a parent's placeholder, the welded links' own) hides nothing
+    measured = solids.rigid_declared(robot, name, {
+        _name(other): computed.inertia for other, _, _, computed, _ in _inertia_ratios(robot)})
     # the most the tensor's error turns the body's inertia about any axis, against the
-    # body's least moment: under FIXED_SHARE of it about every axis
+    # body's least moment either way: under FIXED_SHARE of it about every axis
     error = tuple(tuple(e - d for e, d in zip(row, declared))
                   for row, declared in zip(expected.inertia, properties.inertia))
-    least, whole = mat3.eigvalsh(body.inertia)[0], mat3.trace(body.inertia)
+    least = min(mat3.eigvalsh(b.inertia)[0] for b in (body, measured or body))
+    whole = mat3.trace(body.inertia)
     if not least > 0 or max(abs(v) for v in mat3.eigvalsh(error)) >= FIXED_SHARE * least:
         return None
     def mass(member: str) -> float:
