@@ -701,3 +701,25 @@ def test_u310s_command_quotes_the_link_so_alike_links_are_one_report_line(tmp_pa
     assert "`urdftool inertia --link 'cup0'` computes it" in found[0][1]
     result = load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(("U310",))))
     assert len(groups(result.findings)) == 1
+
+
+def test_a_welded_link_s_tensor_is_negligible_only_against_a_body_not_itself_a_placeholder(tmp_path):
+    # U310's note for a link welded to others (Unitree G1's 1 g contour links): the body's
+    # least moment is read with the measured links' tensors too, so a base whose declared
+    # tensor is a placeholder (ixx="300", the P3-AT's) hides no camera's wrong tensor
+    from urdftool.diagnostics import Severity
+
+    def robot(base_tensor: str) -> str:
+        return f"""<robot name="r"><link name="base_link"><inertial><mass value="20"/>
+          <inertia ixx="{base_tensor}" ixy="0" ixz="0" iyy="{base_tensor}" iyz="0"
+          izz="{base_tensor}"/></inertial>
+          <collision><geometry><box size="0.5 0.4 0.2"/></geometry></collision></link>
+          <joint name="c" type="fixed"><parent link="base_link"/><child link="camera"/>
+            <origin xyz="0.2 0 0.15"/></joint>
+          <link name="camera"><inertial><mass value="0.1"/><inertia ixx="0.1" ixy="0" ixz="0"
+            iyy="0.1" iyz="0" izz="0.1"/></inertial>
+            <collision><geometry><box size="0.03 0.1 0.03"/></geometry></collision></link>
+          </robot>"""
+    _, findings = check_folder(tmp_path, {"robot.urdf": robot("300")}, select=("U310",))
+    camera = [f for f in findings if "'camera'" in f.message]
+    assert [f.severity for f in camera] == [Severity.WARNING], [f.message for f in findings]
