@@ -706,9 +706,9 @@ def inertia_far_from_geometry(robot):
     adds: nothing (no larger: youbot's wheels; a link drawn only with a visual is judged from
     it), or that not all of it could be measured (a mesh missing), when it could not tell.
 
-    A **note** too when the link is welded by fixed joints to other links and its geometry's
-    tensor in place of the declared one would change the whole rigid body's inertia by under
-    1 % of its least principal moment, about any axis: every simulator moves welded links as one body (Gazebo and MuJoCo
+    A **note** too when the link is welded by fixed joints to other links, weighs under 1 % of
+    that rigid body, and its geometry's tensor in place of the declared one would change the
+    body's inertia by under 1 % of its least principal moment, about any axis: every simulator moves welded links as one body (Gazebo and MuJoCo
     lump them, Pinocchio merges them into the parent, Bullet and Drake sum them), so the error
     is lost in the body's (Unitree G1's 1 g contour and support links, fixed to a 4 kg pelvis
     and a torso: 11 rows of the real sweep).
@@ -788,8 +788,9 @@ def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
                   for row, declared in zip(expected.inertia, properties.inertia))
     least = min(mat3.eigvalsh(b.inertia)[0] for b in (body, measured or body))
     whole = mat3.trace(body.inertia)
-    if not least > 0 or max(abs(v) for v in mat3.eigvalsh(error)) >= FIXED_SHARE * least:
-        return None
+    if not least > 0 or max(abs(v) for v in mat3.eigvalsh(error)) >= FIXED_SHARE * least \
+            or properties.mass >= FIXED_SHARE * body.mass:
+        return None  # (a link of a hundredth of the body's mass or more: its own part)
     def mass(member: str) -> float:
         declared = declared_of(robot, robot.links[member]) if member in robot.links else None
         return declared.mass if declared is not None and math.isfinite(declared.mass) else 0.0
@@ -797,9 +798,11 @@ def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
     heaviest = max((m for m in members if m != name), key=mass)
     others = f" and {len(members) - 2} more" if len(members) > 2 else ""
     return (f"negligible where it is: fixed joints make '{name}' one body with '{heaviest}'"
-            f"{others}, whose inertia (trace {number(whole, 3)} kg m^2) this tensor changes by "
-            f"under {number(FIXED_SHARE * 100, places=0)} % about any axis, and simulators "
-            "move that body as one")
+            f"{others} ({number(body.mass, 3)} kg, of which it is under "
+            f"{number(FIXED_SHARE * 100, places=0)} %), whose inertia (trace "
+            f"{number(whole, 3)} kg m^2) this tensor changes by under "
+            f"{number(FIXED_SHARE * 100, places=0)} % about any axis, and simulators move that "
+            "body as one")
 
 
 def _drawn_bound(robot, link, properties, solid) -> float | None:
