@@ -219,6 +219,41 @@ def test_a_package_xml_without_a_build_file_leaves_its_share_folder_uncertain(re
     assert located.doubt is None
 
 
+def test_a_share_folder_the_repository_cmake_copies_and_installs_is_read(repo):
+    """icub-models' layout: the root CMake copies iCub/ into its build folder, globs
+    iCub_manual/ and iCub_creo2urdf/ and copies each entry's contents there too, then installs
+    the build folder's iCub as share/iCub; the placeholder package.xml is in iCub_manual/."""
+    (repo / "CMakeLists.txt").write_text(
+        "project(icub-models)\n"
+        "file(COPY ${CMAKE_CURRENT_SOURCE_DIR}/iCub DESTINATION ${CMAKE_CURRENT_BINARY_DIR})\n"
+        "file(GLOB manual RELATIVE ${CMAKE_CURRENT_SOURCE_DIR}/iCub_manual "
+        "${CMAKE_CURRENT_SOURCE_DIR}/iCub_manual/*)\n"
+        "foreach(manual ${manual})\n"
+        "  file(COPY ${CMAKE_CURRENT_SOURCE_DIR}/iCub_manual/${manual}/ "
+        "DESTINATION ${CMAKE_CURRENT_BINARY_DIR}/iCub/${manual})\n"
+        "endforeach()\n"
+        "file(GLOB creo RELATIVE ${CMAKE_CURRENT_SOURCE_DIR}/iCub_creo2urdf "
+        "${CMAKE_CURRENT_SOURCE_DIR}/iCub_creo2urdf/*)\n"
+        "foreach(creo ${creo})\n"
+        "  file(COPY ${CMAKE_CURRENT_SOURCE_DIR}/iCub_creo2urdf/${creo}/ "
+        "DESTINATION ${CMAKE_CURRENT_BINARY_DIR}/iCub/${creo})\n"
+        "endforeach()\n"
+        "install(DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/iCub DESTINATION share)\n")
+    package(repo, "iCub_manual", "iCub", **{"meshes/hand.stl": "solid"})
+    for path in ("iCub/meshes/chest.stl", "iCub_creo2urdf/meshes_creo2urdf/head.stl"):
+        (repo / path).parent.mkdir(parents=True, exist_ok=True)
+        (repo / path).write_text("solid")
+    resolver = PackageResolver(start=repo, environ={})
+    for uri, there in (("package://iCub/meshes/chest.stl", "iCub/meshes/chest.stl"),
+                       ("package://iCub/meshes/hand.stl", "iCub_manual/meshes/hand.stl"),
+                       ("package://iCub/meshes_creo2urdf/head.stl",
+                        "iCub_creo2urdf/meshes_creo2urdf/head.stl")):
+        located = resolver.locate_uri(uri, repo)
+        assert located.path == repo / there, uri
+    missing = resolver.locate_uri("package://iCub/meshes/none.stl", repo)
+    assert missing.doubt  # what else the build writes there is not read: not certain
+
+
 @pytest.mark.parametrize("end", ["\n", "\r\n"])
 def test_cmake_commands_are_at_the_files_lines_whatever_ends_them(end):
     """(A CR alone ends no CMake line: its lexer's line end is LF, so a comment runs on.)"""

@@ -11,7 +11,11 @@ site-packages find ``NAME/...`` there). :func:`layout` reads them without runnin
   ``FILES`` and ``PROGRAMS ... DESTINATION ...)`` with ``${PROJECT_NAME}``, ``project()``,
   ``set()`` variables set once, ``foreach`` over literal items, ``CATKIN_PACKAGE_SHARE_DESTINATION``,
   and ``ament_auto_package(INSTALL_TO_SHARE ...)``; ``dir/`` installs the folder's contents,
-  ``dir`` the folder itself;
+  ``dir`` the folder itself (``DESTINATION share`` installs a folder named NAME as share/NAME);
+  a source in the build folder (``${CMAKE_CURRENT_BINARY_DIR}``) is what ``file(COPY ...
+  DESTINATION ${CMAKE_CURRENT_BINARY_DIR}/...)`` put there, and ``file(GLOB VAR [RELATIVE d]
+  d/*)`` lists one folder of the repository (both leave a doubt: the build may write or find
+  more there);
 - ``setup.py`` by ``ast`` only (never imported): ``setup(data_files=..., package_dir=...)`` of
   literals, module-level string constants, ``os.path.join``, ``+``, f-strings, ``glob(...)``
   (files land flat in their destination), and a list variable built by ``=``, ``+=``,
@@ -19,7 +23,10 @@ site-packages find ``NAME/...`` there). :func:`layout` reads them without runnin
 - ``setup.cfg``: ``[options.data_files]`` and ``[options] package_dir``.
 
 A package.xml with none of these beside it is built by nothing that reads it: another build
-(the repository's own CMake, a script) makes its share folder, and nothing is certain.
+(the repository's own CMake, a script) makes its share folder, and nothing is certain; the
+nearest CMakeLists.txt above it is read for what it installs as share/NAME (icub-models: its
+placeholder iCub_manual/package.xml, share/iCub made of iCub/, iCub_manual/ and
+iCub_creo2urdf/), which is then found there.
 What cannot be read with certainty (a variable set in a loop, a generator expression, a
 ``data_files`` built by walking folders) is kept as a reason in :attr:`Layout.unread`: a file
 then missing from the source tree is not certainly missing after the build. Everything read is
@@ -38,7 +45,7 @@ import re
 from pathlib import Path
 
 from urdftool.diagnostics import lines_between
-from urdftool.description.files import kind_of, read_regular
+from urdftool.description.files import kind_of, listing, read_regular
 from urdftool.description.run_memo import per_run
 from urdftool.records import Frozen
 
@@ -159,8 +166,30 @@ def layout(folder: Path, name: str, root: Path) -> Layout:
         # repository's own CMake from three source folders)
         reader.doubt(None, "no CMakeLists.txt, setup.py or setup.cfg beside its package.xml: "
                            "another build makes its share folder")
+        # the repository's own CMake above it, which may install a folder as share/NAME
+        # (icub-models: install(DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/iCub DESTINATION share)
+        # of a build folder its file(COPY) fills): what it is read to install is found there;
+        # the doubt stays (a missing file is not certain)
+        above = _enclosing_build(Path(folder), Path(root))
+        if above is not None:
+            reader.build.append(Path(os.path.relpath(above / "CMakeLists.txt", folder)).as_posix())
+            _CMake(reader).run_file(above, ())
     return Layout(tuple(reader.rules[:MAX_RULES]), tuple(dict.fromkeys(reader.unread)),
                   ", ".join(reader.build))
+
+
+def _enclosing_build(folder: Path, root: Path) -> Path | None:
+    """The nearest folder above ``folder``, up to ``root``, holding a CMakeLists.txt."""
+    top = os.path.normpath(root)
+    for above in folder.parents:
+        here = os.path.normpath(above)
+        if not (here == top or here.startswith(top.rstrip(os.sep) + os.sep)):
+            return None
+        if kind_of(above / "CMakeLists.txt") == "file":
+            return above
+        if here == top:
+            return None
+    return None
 
 
 class _Reader:
@@ -173,6 +202,9 @@ class _Reader:
         self.rules: list[InstallRule] = []
         self.unread: list[str] = []
         self.build: list[str] = []
+        # what CMake's file(COPY) put into the build folder: (the place below it, the source
+        # copied there, absolute; where it was read), in the build's order
+        self.copies: list[tuple[str, str, str]] = []
 
     def read(self, path: Path) -> str | None:
         try:
@@ -200,7 +232,11 @@ class _Reader:
 
     def add(self, destination: str, source: str, kind: str, origin: str, base: Path,
             as_name: str = "") -> None:
-        """Keep one rule; a source leading outside the repository is refused (never looked at)."""
+        """Keep one rule; a source leading outside the repository is refused (never looked at).
+        A source in CMake's build folder is what file(COPY) put there (:meth:`from_build`)."""
+        if source.startswith(_BUILD):
+            self.from_build(destination, source[len(_BUILD):], kind, origin, as_name)
+            return
         joined = os.path.normpath(os.path.join(base, source.replace("\\", "/")))
         root = os.path.normpath(self.root)
         if not (joined == root or joined.startswith(root.rstrip(os.sep) + os.sep)):
@@ -210,6 +246,34 @@ class _Reader:
         relative = Path(os.path.relpath(joined, self.folder)).as_posix()
         if len(self.rules) < MAX_RULES:
             self.rules.append(InstallRule(destination, relative, kind, origin, as_name))
+
+
+    def from_build(self, destination: str, place: str, kind: str, origin: str,
+                   as_name: str) -> None:
+        """The rules installing ``place`` of CMake's build folder: the sources file(COPY) put
+        at or below it (tree), or at a folder holding it (file). Other commands may write
+        there too (configure_file, file(WRITE), custom commands), which are not read: the
+        place is doubted as well, so that a file missing is never certain."""
+        place = posixpath.normpath(place.strip("/")) if place.strip("/") else ""
+        place = "" if place == "." else place
+        self.doubt(destination, f"{origin}: installs CMake's build folder, of which only what "
+                                "file(COPY) puts there is read")
+        for landing, copied, where in self.copies:
+            told = f"{origin}, from {where}"
+            if kind == "tree":
+                rest = _below(landing, place)  # the copy lands inside the folder installed
+                if rest is not None:
+                    self.add(_join(destination, rest) if destination else rest, copied,
+                             "tree", told, self.folder)
+                    continue
+                inner = _below(place, landing)  # the folder installed is inside the copy
+                if inner is not None:
+                    self.add(destination, _join(copied, inner), "tree", told, self.folder)
+            elif kind == "file":
+                inner = _below(place, landing)
+                if inner is not None:
+                    self.add(destination, _join(copied, inner), "file", told, self.folder,
+                             as_name)
 
 
 # ---- CMake ------------------------------------------------------------------------------------
@@ -335,6 +399,11 @@ _INSTALL_DIRS = {
     "CMAKE_INSTALL_SYSCONFDIR": "etc", "CMAKE_INSTALL_DOCDIR": "share/doc/{}"}
 _SOURCE_VARIABLES = ("CMAKE_CURRENT_SOURCE_DIR", "CMAKE_CURRENT_LIST_DIR", "PROJECT_SOURCE_DIR",
                      "CMAKE_SOURCE_DIR")
+# CMake's build folder (CMAKE_CURRENT_BINARY_DIR...), a place no path of the source tree names:
+# what is installed from it is what file(COPY) put there (_Reader.from_build)
+_BUILD = "\x00build"
+_COPY_FILTERS = {"FILES_MATCHING", "PATTERN", "REGEX", "EXCLUDE"}
+_FALSE = {"FALSE", "OFF", "0", "NO", "N", "IGNORE", ""}
 
 
 class _CMake:
@@ -343,6 +412,8 @@ class _CMake:
     def __init__(self, reader: _Reader):
         self.reader = reader
         self.followed = 0
+        self.top: Path | None = None
+        self.globbed: set[str] = set()  # variables holding a file(GLOB) of the source tree
 
     def run_file(self, folder: Path, inherited: tuple) -> None:
         path = folder / "CMakeLists.txt"
@@ -351,15 +422,26 @@ class _CMake:
             return
         commands = cmake_commands(text)
         shown = Path(os.path.relpath(path, self.reader.folder)).as_posix()
-        variables = self._variables(commands, dict(inherited))
+        if self.top is None:
+            self.top = folder
+        below = Path(os.path.relpath(folder, self.top)).as_posix()
+        binary = [_Arg(_BUILD if below == "." else f"{_BUILD}/{below}", True)]
+        seeded = {**dict(inherited), "CMAKE_CURRENT_BINARY_DIR": binary,
+                  "CMAKE_BINARY_DIR": [_Arg(_BUILD, True)]}
+        if "PROJECT_BINARY_DIR" not in seeded or any(c[0] == "project" for c in commands):
+            seeded["PROJECT_BINARY_DIR"] = binary
+        variables = self._variables(commands, seeded, folder)
         self._run(commands, variables, folder, shown)
 
-    def _variables(self, commands, variables: dict) -> dict:
-        """Variables set once (``set``, ``project``); set twice or by anything else: unknown."""
+    def _variables(self, commands, variables: dict, folder: Path) -> dict:
+        """Variables set once (``set``, ``project``, ``file(GLOB)`` of one folder's entries);
+        set twice or by anything else: unknown."""
         counts: dict[str, int] = {}
         for name, args, _ in commands:
             if name == "set" and args:
                 counts[args[0].text] = counts.get(args[0].text, 0) + 1
+            elif name == "file" and len(args) > 1 and args[0].text == "GLOB":
+                counts[args[1].text] = counts.get(args[1].text, 0) + 1
             elif name == "project" and args:
                 counts["PROJECT_NAME"] = counts.get("PROJECT_NAME", 0) + 1
             elif name in _SETTERS:  # may set any variable named among its arguments
@@ -379,6 +461,10 @@ class _CMake:
                 if any(a.text in ("CACHE", "PARENT_SCOPE") for a in args[1:]):
                     values = args[1:2]
                 variables[args[0].text] = values
+            elif name == "file" and len(args) > 1 and args[0].text == "GLOB" and \
+                    counts.get(args[1].text) == 1:
+                variables[args[1].text] = self._glob(args[2:], variables, folder)
+                self.globbed.add(args[1].text)
         for name, count in counts.items():
             if count > 1:
                 variables[name] = _UNKNOWN
@@ -404,11 +490,81 @@ class _CMake:
                 continue
             if name == "install":
                 self._install(args, variables, folder, origin)
+            elif name == "file" and args and args[0].text == "COPY":
+                self._copy(args, variables, folder, origin)
             elif name == "ament_auto_package":
                 self._auto_package(args, variables, folder, origin)
             elif name == "add_subdirectory" and args:
                 self._subdirectory(args[0], variables, folder, origin)
             i += 1
+
+    def _of_glob(self, args) -> bool:
+        """Whether an argument names a variable holding a file(GLOB)."""
+        return any(match.group(1) in self.globbed
+                   for a in args for match in _VARIABLE.finditer(a.text))
+
+    def _glob(self, args, variables, folder: Path):
+        """``file(GLOB VAR [LIST_DIRECTORIES b] [RELATIVE dir] patterns)``'s values: the
+        entries of one folder of the repository matching a pattern (none in the folder's
+        path), sorted as CMake sorts them; unknown for anything else."""
+        relative, folders, patterns, i = None, True, [], 0
+        while i < len(args):
+            word = args[i].text
+            if word in ("RELATIVE", "LIST_DIRECTORIES") and i + 1 < len(args):
+                value = _expand(args[i + 1], variables, folder)
+                if value is None or len(value) != 1:
+                    return _UNKNOWN
+                if word == "RELATIVE":
+                    relative = value[0]
+                else:
+                    folders = value[0].upper() not in _FALSE
+                i += 2
+                continue
+            if word in ("FOLLOW_SYMLINKS", "CONFIGURE_DEPENDS"):
+                i += 1
+                continue
+            values = _expand(args[i], variables, folder)
+            if values is None:
+                return _UNKNOWN
+            patterns += values
+            i += 1
+        top = os.path.normpath(self.reader.root)
+        found = []
+        for pattern in patterns:
+            if _BUILD in pattern:  # the build folder's entries: written by the build
+                return _UNKNOWN
+            parent, leaf = os.path.split(os.path.normpath(os.path.join(folder, pattern)))
+            if _MAGIC.search(parent) or "|" in leaf or not leaf or not (
+                    parent == top or parent.startswith(top.rstrip(os.sep) + os.sep)):
+                return _UNKNOWN
+            for entry, kind in listing(parent, leaf):
+                if kind == "folder" and not folders:
+                    continue
+                full = os.path.join(parent, entry)
+                found.append(os.path.relpath(full, os.path.join(folder, relative))
+                             if relative is not None else full)
+        return [_Arg(Path(value).as_posix(), True) for value in sorted(set(found))][:256]
+
+    def _copy(self, args, variables, folder: Path, origin: str) -> None:
+        """``file(COPY sources DESTINATION dir)`` into the build folder: kept (unfiltered
+        copies only) as the sources of what is installed from there."""
+        words = [a.text for a in args]
+        if "DESTINATION" not in words or _COPY_FILTERS & set(words):
+            return
+        at = words.index("DESTINATION")
+        where = _expand(args[at + 1], variables, folder) if at + 1 < len(args) else None
+        if where is None or len(where) != 1 or not where[0].startswith(_BUILD):
+            return
+        landing = posixpath.normpath(where[0][len(_BUILD):].strip("/") or ".")
+        landing = "" if landing == "." else landing
+        for arg in args[1:at]:
+            for value in _expand(arg, variables, folder) or ():
+                if not value or value.startswith(_BUILD):
+                    continue
+                source = os.path.normpath(os.path.join(folder, value))
+                into = landing if value.endswith("/") else \
+                    _join(landing, posixpath.basename(value.rstrip("/")))
+                self.reader.copies.append((into, source, origin))
 
     def _foreach(self, args, body, variables, folder, shown, origin) -> None:
         if not args:
@@ -431,6 +587,11 @@ class _CMake:
                 self.reader.doubt(None, f"{origin}: install() in a foreach() over values "
                                           "not read")
             return
+        if self._of_glob(items) and any(c[0] in ("install", "ament_auto_package", "file")
+                                        for c in body):
+            self.reader.doubt(None, f"{origin}: install() or file(COPY) in a foreach() over "
+                                      "a file(GLOB) of the source tree, which may hold more in "
+                                      "a build (generated folders, submodules)")
         for item in [value for a in items for value in _expand(a, variables)][:256]:
             self._run(body, {**variables, args[0].text: [_Arg(item, True)]}, folder, shown)
 
@@ -475,15 +636,25 @@ class _CMake:
                                       f"{destination.text}) not read")
             return
         target = self.reader.destination(where[0])
-        if target is None:
+        if target is None and kind != "DIRECTORY":
             return
         paths = [_expand(a, variables, folder) for a in sources]
+        if self._of_glob(sources):
+            self.reader.doubt(target, f"{origin}: install({kind} ...) of a file(GLOB) of the "
+                                      "source tree, which may hold more in a build")
         new_name = _expand(rename, variables, folder) if rename is not None else None
         if any(p is None for p in paths) or (rename is not None and not new_name):
-            self.reader.doubt(target, f"{origin}: install({kind} ...) sources not read")
+            if target is not None:
+                self.reader.doubt(target, f"{origin}: install({kind} ...) sources not read")
             return
         for source in [value for values in paths for value in values]:
             if not source:
+                continue
+            if target is None:  # a folder installed into share itself: share/NAME when so named
+                into = None if source.endswith("/") else self.reader.destination(
+                    posixpath.join(where[0], posixpath.basename(source.rstrip("/"))))
+                if into is not None:
+                    self.reader.add(into, source.rstrip("/"), "tree", origin, folder)
                 continue
             if kind == "DIRECTORY":
                 trimmed = source.rstrip("/")

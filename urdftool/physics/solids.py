@@ -1082,6 +1082,26 @@ def rigid_group(robot, name: str) -> list[str]:
     return order
 
 
+def rigid_declared(robot, name: str, tensors: dict | None = None) -> mp.Body | None:
+    """The declared inertials of link ``name``'s rigid body (it and every link joined to it by
+    fixed joints, either way) as one body in ``name``'s frame, as Gazebo, MuJoCo and Pinocchio
+    lump them (and as any simulator moves them: welded links move as one); ``tensors``: link
+    name -> a tensor to take in place of the declared one (about the same centre of mass);
+    None when none of them has a finite positive mass and a finite tensor."""
+    parts = []
+    for member, (rotation, xyz) in _rigid_frames(robot, name).items():
+        link = robot.links.get(member)
+        body = mp.declared_of(robot, link) if link is not None else None
+        if body is None or not (math.isfinite(body.mass) and body.mass > 0) or not all(
+                math.isfinite(v) for row in body.inertia for v in row) or not all(
+                math.isfinite(v) for v in body.com):
+            continue
+        if tensors and member in tensors:
+            body = mp.Body(body.mass, body.com, tensors[member])
+        parts.append(mp.transformed(body, xyz, rotation))
+    return mp.combine(parts) if parts else None
+
+
 def _rigid_frames(robot, name: str) -> dict[str, tuple[mat3.Matrix, mat3.Vector]]:
     """Link ``name`` and every link joined to it by fixed joints -> (R, t) taking points of
     that link's frame into ``name``'s frame."""

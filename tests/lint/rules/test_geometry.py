@@ -172,6 +172,22 @@ def test_a_package_mesh_beside_the_robot_file_is_not_certainly_missing(tmp_path)
     assert severity == Severity.ERROR
 
 
+def test_a_mesh_file_named_as_a_package_says_where_a_file_of_that_name_is(tmp_path):
+    """onshape-to-robot's MuJoCo exports write ``package://body.stl`` for ``assets/body.stl``:
+    the message says where a file of that name is below the robot file, and who finds it there
+    (a loader given that folder: Pinocchio's package_dirs, MuJoCo before 3.7.0 as meshdir);
+    a name nowhere below says nothing of it."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    _stl(tmp_path / "assets" / "body.stl")
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://body.stl")
+    assert severity == Severity.WARNING and "'assets/body.stl', below the robot file" in message
+    assert "Pinocchio's package_dirs" in message and "MuJoCo before 3.7.0" in message
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://wheel.stl")
+    assert severity == Severity.WARNING and "below the robot file" not in message
+
+
 def test_a_mesh_package_not_installed_here_is_a_warning_unless_misspelt(tmp_path):
     """As U006 for a ``$(find)``: a mesh package this machine lacks is the environment's: a
     note when the robot's package.xml declares it (ros2_control_bolt's robot_properties_bolt:

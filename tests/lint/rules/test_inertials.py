@@ -306,6 +306,24 @@ def test_com_outside_hull(tmp_path, com, reported):
         assert said in findings[0].message, findings[0].message
 
 
+def test_a_centre_of_mass_left_at_the_link_origin_is_named_so(tmp_path):
+    # the old ur_description's wrists, the mastering_ros arm's fingers: an inertial with no
+    # <origin> (or xyz 0 0 0) on a link drawn away from its joint: the message says the centre
+    # of mass is the link's own origin, not another frame or a flipped sign
+    text = """<robot name="r"><link name="base_link"/>
+      <joint name="j" type="prismatic"><parent link="base_link"/><child link="finger"/>
+        <axis xyz="0 1 0"/><limit lower="0" upper="0.03" effort="1" velocity="1"/></joint>
+      <link name="finger"><inertial><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0"
+        iyy="1e-4" iyz="0" izz="1e-4"/></inertial>
+        <visual><origin xyz="0.04 -0.03 0"/><geometry><box size="0.08 0.01 0.01"/></geometry>
+        </visual></link></robot>"""
+    _, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U312",))
+    [finding] = findings
+    assert "centre of mass (0 0 0), the link's own origin" in finding.message, finding.message
+    assert "an inertial left at the link's origin (no <origin>, or xyz 0 0 0)" in finding.message
+    assert "sign flipped" not in finding.message
+
+
 def test_a_frame_placeholder_between_the_fingers_is_not_judged(tmp_path):
     # a tool centre point: no geometry of its own, its inertial at its origin, fixed to a
     # gripper whose geometry is behind it
@@ -702,3 +720,25 @@ def test_an_indefinite_tensor_says_when_no_sign_of_a_product_can_mend_it(tmp_pat
     messages = {f.message.split("'")[1]: f.message for f in findings}
     assert "sqrt(ixx izz)" in messages["contact"] and "signs" not in messages["contact"], messages
     assert "check the signs of ixy, ixz, iyz" in messages["signs"], messages
+
+
+def test_a_welded_link_s_tensor_is_negligible_only_against_a_body_not_itself_a_placeholder(tmp_path):
+    # U310's note for a link welded to others (Unitree G1's 1 g contour links): the body's
+    # least moment is read with the measured links' tensors too, so a base whose declared
+    # tensor is a placeholder (ixx="300", the P3-AT's) hides no camera's wrong tensor
+    from urdftool.diagnostics import Severity
+
+    def robot(base_tensor: str) -> str:
+        return f"""<robot name="r"><link name="base_link"><inertial><mass value="20"/>
+          <inertia ixx="{base_tensor}" ixy="0" ixz="0" iyy="{base_tensor}" iyz="0"
+          izz="{base_tensor}"/></inertial>
+          <collision><geometry><box size="0.5 0.4 0.2"/></geometry></collision></link>
+          <joint name="c" type="fixed"><parent link="base_link"/><child link="camera"/>
+            <origin xyz="0.2 0 0.15"/></joint>
+          <link name="camera"><inertial><mass value="0.1"/><inertia ixx="0.1" ixy="0" ixz="0"
+            iyy="0.1" iyz="0" izz="0.1"/></inertial>
+            <collision><geometry><box size="0.03 0.1 0.03"/></geometry></collision></link>
+          </robot>"""
+    _, findings = check_folder(tmp_path, {"robot.urdf": robot("300")}, select=("U310",))
+    camera = [f for f in findings if "'camera'" in f.message]
+    assert [f.severity for f in camera] == [Severity.WARNING], [f.message for f in findings]

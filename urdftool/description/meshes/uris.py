@@ -108,7 +108,10 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
     that drop ``package://`` (PyBullet; Pinocchio given the robot's folder) open; NASA's
     r2_description, a folder of the package's name without a package.xml, which a loader given
     the folder above as a package path (Pinocchio's package_dirs, urdf-loaders' packages)
-    opens. ROS's resource_retriever opens neither.
+    opens. ROS's resource_retriever opens neither. A file name written as the package
+    (``package://body.stl``, onshape-to-robot's MuJoCo exports) with a file of that name below
+    the robot file (``assets/body.stl``) is not certain either: a loader given that folder
+    opens it (Pinocchio's package_dirs; MuJoCo before 3.7.0, which keeps the file name only).
 
     Otherwise the package is not installed here: the environment's (as a ``$(find)``'s is),
     so not certain, unless the robot's package.xml does not declare it and either its name
@@ -130,9 +133,14 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
             error = error.declared(owner, declares, manifest=manifest)
             lacking = f"; {seen} (no package.xml) does not hold '{tail}'" if seen else ""
             misspelt = any(_misspelling(package, close) for close in error.close or ())
-            return MeshProblem("package", f"mesh '{uri}': {error}{lacking}"
+            below = _named_below(base, package) if not tail else None
+            held = (f"; not certain: '{below}', below the robot file, has that name, where "
+                    "loaders given its folder find it (Pinocchio's package_dirs; MuJoCo "
+                    "before 3.7.0 given it as meshdir, as it keeps a mesh's file name only)"
+                    ) if below else ""
+            return MeshProblem("package", f"mesh '{uri}': {error}{lacking}{held}"
                                           f"{_in_own_package(robot, owner, tail)}",
-                               certain=not declares and (misspelt or bool(seen)),
+                               certain=not declares and not below and (misspelt or bool(seen)),
                                declared=error.declared_by is not None, repeated=error.repeated)
         folder = os.path.dirname(folder)
     if folder == base:
@@ -147,6 +155,20 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                                   "and loaders given it as a package path (Pinocchio's "
                                   "package_dirs) find it", certain=False,
                        repeated=error.repeated)
+
+
+def _named_below(base: str, name: str) -> str | None:
+    """The file named ``name`` (``package://NAME.stl``: a file name written as a package's)
+    in a folder below the robot file's, three levels at most, relative to it; None when
+    none is (onshape-to-robot's MuJoCo exports write ``package://body.stl`` for
+    ``assets/body.stl``)."""
+    if not name or "." not in name or any(char in name for char in "*?[]|/\\"):
+        return None
+    for folder, entries in walk(base, f"{name}|*/", 3, most=200):
+        if os.path.normpath(folder) != os.path.normpath(base) and \
+                (name, "file") in entries:
+            return Path(os.path.relpath(os.path.join(folder, name), base)).as_posix()
+    return None
 
 
 def _in_own_package(robot, owner: str | None, tail: str) -> str:

@@ -726,6 +726,14 @@ def inertia_far_from_geometry(robot):
     adds: nothing (no larger: youbot's wheels; a link drawn only with a visual is judged from
     it), or that not all of it could be measured (a mesh missing), when it could not tell.
 
+    A **note** too when the link is welded by fixed joints to other links, weighs under 1 % of
+    that rigid body, and its geometry's tensor in place of the declared one would change the
+    body's inertia by under 1 % of its least principal moment, about any axis: every simulator moves welded links as one body (Gazebo and MuJoCo
+    lump them, Pinocchio merges them into the parent, Bullet and Drake sum them), so the error
+    is lost in the body's (Unitree G1's 1 g contour and support links, fixed to a 4 kg pelvis
+    and a torso; Go2's head, cameras and mounts on bases: in the real sweep 79 rows became
+    notes and 8 lost lines, 72 of those rows judged TRUE as placeholders, 7 DEBATABLE).
+
     Bad: a 0.1 kg, 10 x 3 x 3 cm camera with ``ixx="0.0016" iyy="0.0016" izz="0.0016"``
     (24 times its box's)
     Good: ``ixx="1.5e-5" iyy="9.1e-5" izz="9.1e-5"`` (``urdftool inertia`` computes them)
@@ -765,7 +773,57 @@ def inertia_far_from_geometry(robot):
         if held:
             message = Conditional("if the collision geometry is the body's shape, not a "
                                   f"simplification smaller than it: {message}", Severity.INFO)
+        lumped = _negligible_where_fixed(robot, link, properties, expected)
+        if lumped is not None:  # welded to a heavier body: its error is lost in the body's
+            yield _inertial_part(link, "inertia"), f"{message}; {lumped}", None, Severity.INFO
+            continue
         yield _inertial_part(link, "inertia"), message
+
+
+FIXED_SHARE = 0.01  # of a rigid body's inertia: a link's tensor error below it changes nothing
+
+
+def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
+    """What to say when ``link`` is welded by fixed joints to other links and replacing its
+    declared tensor by its geometry's (``expected``) changes the whole rigid body's inertia by
+    under FIXED_SHARE of its least principal moment, about any axis, that moment read both
+    from the declared tensors and with every measured link's tensor its geometry's (a parent's
+    placeholder ``ixx="300"`` would hide anything) (a 1 g placeholder on a contour mesh fixed
+    to a 4 kg pelvis: Unitree's G1); else None. Every simulator moves welded links as one body (Gazebo and
+    MuJoCo lump them, Pinocchio merges them into the parent, Bullet and Drake sum them in the
+    composite), so only the body's tensor matters, and this link's error is lost in it."""
+    name = _name(link)
+    members = solids.rigid_group(robot, name)
+    if len(members) < 2:
+        return None
+    body = solids.rigid_declared(robot, name)
+    if body is None:
+        return None
+    # the body again with every measured link's tensor its geometry's: a body whose declared
+    # tensors are too large (a parent's placeholder, the welded links' own) hides nothing
+    measured = solids.rigid_declared(robot, name, {
+        _name(other): computed.inertia for other, _, _, computed, _ in _inertia_ratios(robot)})
+    # the most the tensor's error turns the body's inertia about any axis, against the
+    # body's least moment either way: under FIXED_SHARE of it about every axis
+    error = tuple(tuple(e - d for e, d in zip(row, declared))
+                  for row, declared in zip(expected.inertia, properties.inertia))
+    least = min(mat3.eigvalsh(b.inertia)[0] for b in (body, measured or body))
+    whole = mat3.trace(body.inertia)
+    if not least > 0 or max(abs(v) for v in mat3.eigvalsh(error)) >= FIXED_SHARE * least \
+            or properties.mass >= FIXED_SHARE * body.mass:
+        return None  # (a link of a hundredth of the body's mass or more: its own part)
+    def mass(member: str) -> float:
+        declared = declared_of(robot, robot.links[member]) if member in robot.links else None
+        return declared.mass if declared is not None and math.isfinite(declared.mass) else 0.0
+
+    heaviest = max((m for m in members if m != name), key=mass)
+    others = f" and {len(members) - 2} more" if len(members) > 2 else ""
+    return (f"negligible where it is: fixed joints make '{name}' one body with '{heaviest}'"
+            f"{others} ({number(body.mass, 3)} kg, of which it is under "
+            f"{number(FIXED_SHARE * 100, places=0)} %), whose inertia (trace "
+            f"{number(whole, 3)} kg m^2) this tensor changes by under "
+            f"{number(FIXED_SHARE * 100, places=0)} % about any axis, and simulators move that "
+            "body as one")
 
 
 def _drawn_bound(robot, link, properties, solid) -> float | None:
@@ -1009,6 +1067,9 @@ def com_outside_hull(robot):
     frame's placeholder inertial (a link without geometry of its own whose centre of mass is
     its origin: a tool centre point between a gripper's fingers).
     Farther out than the geometry's size is U307's, an origin copied from the joint U313's.
+    A centre of mass at the link's own origin (no ``<origin>``, or xyz 0 0 0) is said to be
+    one: an inertial left on the joint rather than placed where the parts are (the old
+    ur_description's wrists, 6 to 12 cm from the centres of mass UR's own description gives).
 
     A **note** when the centre of mass lies inside the drawn geometry of a link a joint moves
     against this one (its parent, a child): Gazebo, Bullet, MuJoCo and Pinocchio put the mass
@@ -1057,6 +1118,15 @@ def com_outside_hull(robot):
                 f"against it: right if parts drawn with '{neighbour}' move with "
                 f"'{_name(link)}' (a motor's rotor, a gear), else the inertial is another part's"), \
                 None, Severity.INFO
+            continue
+        if properties.com == (0.0, 0.0, 0.0):  # the link's origin, on its joint: a placeholder
+            yield first_child(link, "inertial"), (
+                f"link '{_name(link)}': centre of mass (0 0 0), the link's own origin, is at "
+                f"least {number(outside * 1000, places=0)} mm outside the convex hull of its "
+                f"visual and collision geometry{fixed}, where no body has its centre of mass: "
+                "an inertial left at the link's origin (no <origin>, or xyz 0 0 0) rather than "
+                "placed where the link's parts are, unless the link's mass holds parts drawn "
+                "with a neighbouring link (a motor on the joint's axis)")
             continue
         yield first_child(link, "inertial"), (
             f"link '{_name(link)}': centre of mass ({' '.join(f'{number(v, 4)}' for v in properties.com)}) "
