@@ -197,3 +197,24 @@ def test_where_a_package_was_looked_for_is_a_part_of_its_message_named():
         [(kind, part, name)] = error.repeated
         assert (kind, name) == ("searched", "pkg") and str(error).endswith(part)
         assert part.startswith("; looked in: /a, /b. Pass --package pkg=PATH")
+
+
+def test_a_said_message_is_never_rebuilt_into_a_plain_str_silently():
+    """A Said carries the parts a report says once (an available list); a wrapper that rebuilt
+    the message with an f-string dropped them without a word (failing_defaults' U005 wrote
+    the list in full at each finding). Formatting one raises; + and a slice keep them; str()
+    drops them on purpose; a LoadError's message carries its error's parts."""
+    said = "joint 'x' is not known; " + errors.available("joints", "x", ["a", "b"])
+    [part] = said.repeated
+    with pytest.raises(TypeError, match="loses its repeated parts"):
+        f"if it runs: {said}"
+    with pytest.raises(TypeError, match="loses its repeated parts"):
+        "if it runs: {}".format(said)
+    with pytest.raises(TypeError, match="loses its repeated parts"):
+        "if it runs: %s" % said
+    assert ("if it runs: " + said).repeated == (part,)
+    assert said[len("joint 'x' "):].repeated == (part,) and said[:5].repeated == ()
+    assert type(str(said)) is str and type(f"{said!s}") is str
+    assert part == ("available", "available joints: a, b", "2 joints")
+    error = errors.LoadError("xacro", said, None, repeated=said.repeated)
+    assert (error.message + "; more").repeated == (part,)

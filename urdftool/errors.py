@@ -53,14 +53,16 @@ class LoadError(UrdftoolError):
     undefined: for 'xacro', True when it fails on a name the file uses and does not define (a
         property, a macro, a property to forward), which a robot including it may define
     repeated: the parts of the message other findings say word for word (for 'package', where
-        it was looked for: :attr:`PackageNotFound.repeated`)
+        it was looked for: :attr:`PackageNotFound.repeated`; an available list), which
+        ``message`` carries too (a :class:`Said`)
     """
 
     def __init__(self, kind: str, message: str, location, subject: str | None = None,
                  certain: bool = True, close: tuple = (), whatever_args: bool = False,
                  declared: bool = False, undefined: bool = False, repeated: tuple = ()):
         self.kind = kind
-        self.message = message
+        # (a Said: a message built on it with + keeps them, an f-string raises)
+        self.message = Said(message, repeated) if repeated else message
         self.location = location
         self.subject = subject
         self.certain = certain
@@ -302,15 +304,19 @@ def available(kind: str, wanted: str, names) -> str:
                 f"(${{{bare.group(1)}}}), which xacro leaves as written; ")
     quote = any(name != name.strip() for name in names)
     written = f"available {kind}: {listed(names, quote=quote) or '(none)'}"
-    return Said(hint + written, (("available", written, kind),))
+    return Said(hint + written, (("available", written, f"{len(names)} {kind}"),))
 
 
 class Said(str):
     """A message holding parts that other findings of one report say word for word
     (:attr:`~urdftool.diagnostics.Finding.repeated`: ``(kind, text, detail)`` each), such as
-    the list :func:`available` writes (``available``, the list as written, what it lists). A
-    message built on it with ``+`` (``"...; " + available(...)``) keeps them; an f-string or a
-    str method makes a plain str, which has none."""
+    the list :func:`available` writes (``available``, the list as written, how many and what
+    it lists: ``31 links``). A message built on it with ``+`` (``"...; " + available(...)``)
+    keeps them. An f-string or ``format`` would make a plain str without them, silently: it
+    raises TypeError instead (a wrapper writes ``"if ...: " + message``, or ``str(message)``
+    where it means to drop them); ``%`` on a Said raises too. A str method (``join``,
+    ``replace``) still drops them: tests/lint/test_cases.py holds every case's findings to
+    carry the parts their messages say."""
 
     repeated: tuple
 
@@ -319,11 +325,24 @@ class Said(str):
         made.repeated = tuple(repeated)
         return made
 
+    def __format__(self, spec: str) -> str:
+        raise TypeError("a Said formatted into a str loses its repeated parts: build the "
+                        "message with + (or quote str(said) to drop them on purpose)")
+
+    def __rmod__(self, other):
+        raise TypeError("a Said formatted with % loses its repeated parts: build the message "
+                        "with +")
+
     def __add__(self, other: str) -> Said:
         return Said(str.__add__(self, other), self.repeated + getattr(other, "repeated", ()))
 
     def __radd__(self, other: str) -> Said:
         return Said(str.__add__(other, self), getattr(other, "repeated", ()) + self.repeated)
+
+    def __getitem__(self, key) -> Said:
+        """A piece (``message[len(label) + 2:]``), with the parts it still holds whole."""
+        piece = str.__getitem__(self, key)
+        return Said(piece, tuple(part for part in self.repeated if part[1] in piece))
 
 
 def listed(names, quote: bool = True) -> str:
@@ -405,7 +424,6 @@ class MeshProblem(LocatedError):
     def __str__(self) -> str:
         return self.message
 
-
 class SrdfError(LocatedError):
     """The SRDF cannot be read; the message says where and why."""
 
@@ -417,7 +435,7 @@ class ConfigError(LocatedError):
     command-line option: the command adds it."""
 
     def __init__(self, message: str, where: str | None = None):
-        super().__init__(f"{where}: {message}" if where else message)
+        super().__init__(f"{where}: " + message if where else message)
         self.where = where
         self.argument: str | None = None
 
@@ -452,7 +470,7 @@ class IKError(LocatedError):
     came from one. A link name the robot does not have is an :class:`UnknownLink`."""
 
     def __init__(self, message: str, element=None, where: str | None = None):
-        super().__init__(f"{where}: {message}" if where else message, element)
+        super().__init__(f"{where}: " + message if where else message, element)
         self.where = where
 
 
@@ -478,7 +496,7 @@ class UnknownLink(UnknownName):
     """A link asked for by name that the robot does not have; the message lists the others."""
 
     def __init__(self, wanted: str, names):
-        super().__init__(f"link '{wanted}' does not exist; {available('links', wanted, names)}")
+        super().__init__(f"link '{wanted}' does not exist; " + available("links", wanted, names))
         self.wanted = wanted
 
     @classmethod

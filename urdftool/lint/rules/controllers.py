@@ -54,8 +54,7 @@ def hedged(robot, controller: Controller, message: str):
     if answer:
         return message
     verdict = runs_of(robot, controller)
-    return Conditional(f"{_if_started(controller, verdict)}, {_after(controller, message)}",
-                       repeated=getattr(message, "repeated", ()))  # (an available list's)
+    return Conditional(f"{_if_started(controller, verdict)}, " + _after(controller, message))
 
 
 def _if_started(controller: Controller, verdict: Runs) -> str:
@@ -284,9 +283,8 @@ def controller_joint_not_actuated(robot):
                 message = Conditional(
                     f"if the robot's hardware interface offers only the joints of its "
                     f"transmissions (gazebo_ros_control does, and the URDF loads none: a RobotHW "
-                    f"of its own registers the joints it is written for): {message}",
-                    getattr(message, "severity", Severity.WARNING),
-                    repeated=getattr(message, "repeated", ()))
+                    f"of its own registers the joints it is written for): " + message,
+                    getattr(message, "severity", Severity.WARNING))
             if message is not None:
                 yield controller.file.at(ref.line), message
 

@@ -744,7 +744,7 @@ def inertia_far_from_geometry(robot):
             f"`urdftool inertia --link {_shell_word(_name(link))}` computes it")
         if held:
             message = Conditional("if the collision geometry is the body's shape, not a "
-                                  f"simplification smaller than it: {message}", Severity.INFO)
+                                  "simplification smaller than it: " + message, Severity.INFO)
         yield _inertial_part(link, "inertia"), message
 
 
