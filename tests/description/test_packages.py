@@ -63,6 +63,12 @@ def test_not_found_lists_where_it_looked(tmp_path):
     with pytest.raises(PackageNotFound) as error:
         PackageResolver(start=tmp_path, environ={"ROS_PACKAGE_PATH": str(tmp_path)}).find("ghost")
     assert "ROS_PACKAGE_PATH" in str(error.value) and "--package ghost=PATH" in str(error.value)
+    # a rosbuild manifest.xml makes a package too: the places say so (they said package.xml)
+    (tmp_path / ".git").mkdir()
+    with pytest.raises(PackageNotFound) as error:
+        PackageResolver(start=tmp_path, environ={}).find("ghost")
+    assert error.value.searched == [f"package.xml or manifest.xml above {tmp_path} up to "
+                                    f"{tmp_path}", f"package.xml or manifest.xml below {tmp_path}"]
 
 
 def test_mesh_uris(tmp_path):
@@ -487,3 +493,4 @@ def test_a_rosbuild_package_s_messages_name_its_manifest_xml_and_u019_leaves_it(
     assert [(d["line"], d["code"]) for d in found] == [(3, "U006")], result.output
     assert "the manifest.xml of 'rb_description' does not declare it" in found[0]["message"]
     assert '<depend package="missing_pkg"/>' in found[0]["message"]
+

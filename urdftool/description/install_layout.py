@@ -157,7 +157,7 @@ def layout(folder: Path, name: str, root: Path) -> Layout:
     if not reader.build:  # colcon and catkin build no such folder: another build lays out
         # share/NAME (icub-models' placeholder package.xml, its share folder made by the
         # repository's own CMake from three source folders)
-        reader.doubt(None, "no CMakeLists.txt, setup.py or setup.cfg beside its package.xml: "
+        reader.doubt(None, "no CMakeLists.txt, setup.py or setup.cfg in the package's folder: "
                            "another build makes its share folder")
     return Layout(tuple(reader.rules[:MAX_RULES]), tuple(dict.fromkeys(reader.unread)),
                   ", ".join(reader.build))

@@ -16,8 +16,8 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
-from urdftool.description.files import (inside, kind_of, listing, no_file_there, real_path,
-                                        resolved, walk)
+from urdftool.description.files import (MANIFESTS_SAID, inside, kind_of, listing,
+                                        no_file_there, real_path, resolved, walk)
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_of, package_uri_parts)
 from urdftool.description.run_memo import per_run
@@ -128,7 +128,7 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
             owner, declares, manifest = declaring_package(robot.path, package) \
                 if robot.path != "-" else (None, False, "package.xml")
             error = error.declared(owner, declares, manifest=manifest)
-            lacking = f"; {seen} (no package.xml) does not hold '{tail}'" if seen else ""
+            lacking = f"; {seen} (no {MANIFESTS_SAID}) does not hold '{tail}'" if seen else ""
             misspelt = any(_misspelling(package, close) for close in error.close or ())
             return MeshProblem("package", f"mesh '{uri}': {error}{lacking}"
                                           f"{_in_own_package(robot, owner, tail)}",
@@ -142,7 +142,7 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                                       "'package://' (PyBullet; Pinocchio given this folder) "
                                       "find it", certain=False, repeated=error.repeated)
     return MeshProblem("package", f"mesh '{uri}': {error}; not certain: {folder} holds a "
-                                  f"folder '{package}' (no package.xml) with this file, where "
+                                  f"folder '{package}' (no {MANIFESTS_SAID}) with this file, where "
                                   "PyBullet (which looks in every folder above the robot file) "
                                   "and loaders given it as a package path (Pinocchio's "
                                   "package_dirs) find it", certain=False,

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import functools
 
+from urdftool.description.files import MANIFESTS_SAID
 from urdftool.description.ros_version import ros_versions
 from urdftool.description.runtime import (STATE_PUBLISHERS, built_as_checked, built_otherwise,
                                          runtime)
@@ -169,8 +170,8 @@ def _if_ros(unsaid: bool, message: str):
     """U503's ``message``, as a warning naming the condition when nothing says ROS runs the
     robot (``unsaid``)."""
     return Conditional("if ROS 1's ros_control loads it (nothing says ROS runs this robot: no "
-                       "package.xml, launch file, controller file or ros_control plugin; Drake "
-                       "reads a transmission without one): " + message) if unsaid else message
+                       f"{MANIFESTS_SAID}, launch file, controller file or ros_control plugin; "
+                       "Drake reads a transmission without one): " + message) if unsaid else message
 
 
 @rule("U504", "transmission-no-actuator", Severity.ERROR)
