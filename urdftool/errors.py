@@ -424,6 +424,17 @@ class MeshProblem(LocatedError):
     def __str__(self) -> str:
         return self.message
 
+    def quoting(self, uri: str, written: str) -> str:
+        """The message with the mesh quoted as ``written`` in the user's file (a xacro's
+        ``file://$(find pkg)/meshes/a.stl``), ``uri`` (what the robot, expanded, names: the
+        message's quote) kept as detail: a message quoting only the expanded absolute path
+        named what no file of the user says."""
+        quoted = f"mesh '{uri}'"
+        if written == uri or not self.message.startswith(quoted):
+            return self.message
+        return f"mesh '{written}' (expanded: '{uri}'){self.message[len(quoted):]}"
+
+
 class SrdfError(LocatedError):
     """The SRDF cannot be read; the message says where and why."""
 

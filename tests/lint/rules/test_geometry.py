@@ -392,3 +392,25 @@ def test_a_missing_mesh_says_where_the_repository_has_a_file_of_its_name(tmp_pat
     (tmp_path / "other").mkdir()
     (tmp_path / "other/base.stl").write_text("solid s\nendsolid s\n")
     assert "the repository's" not in message("base.stl")  # two of that name: no choosing
+
+
+def test_a_missing_mesh_is_quoted_as_its_file_writes_it(tmp_path):
+    """A xacro's ``file://$(find bot)/meshes/base.stl`` was quoted as xacro expanded it, an
+    absolute path no file of the user says: quoted as written, the expanded URI after it."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    (tmp_path / "CMakeLists.txt").write_text("install(DIRECTORY meshes DESTINATION share/bot)\n")
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text("""<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+<link name="a"><visual><geometry>
+<mesh filename="file://$(find bot)/meshes/base.stl"/>
+</geometry></visual></link></robot>
+""")
+    result = load_and_check(str(robot), CheckOptions())
+    [finding] = [f for f in result.findings if f.code == "U408"]
+    assert finding.line == 3
+    assert finding.message.startswith(
+        f"link 'a' <visual>: mesh 'file://$(find bot)/meshes/base.stl' (expanded: "
+        f"'file://{tmp_path}/meshes/base.stl') not found"), finding.message
