@@ -251,7 +251,7 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
                 return MeshProblem("outside", (
                     f"mesh '{uri}' is in ROS {distro}'s install of '{package}' (outside the "
                     f"repository: not opened), there only where ROS {distro} and {package} are "
-                    f"installed; write package://{package}/{tail}"),
+                    f"installed; write 'package://{package}/{tail}'"),
                     certain=False)
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
