@@ -123,6 +123,7 @@ def test_a_close_name_holding_every_word_of_the_one_wanted_comes_first():
     # ... and a word replaced, which misled (fresh17: wheel_left_joint on a TIAGo)
     ("wheel_left_joint", "torso_lift_joint", False), ("wrist_3_joint", "hand_3_joint", False),
     ("ur_description", "sr_description", False), ("arm_0_link", "arm_6_link", False),
+    ("ur_description", "mur_desciption", False), ("ur", "mur", False),  # (session 20)
     ("shoulder_pan_joint", "forearm_hand_joint", False), ("link4", "imu_link", False),
     # ... and words dropped down to a kind and a number (session 19: xArm Lite 6's gripper
     # controller on the arm alone), not down to a parameter's word (joint_state_broadcaster's)

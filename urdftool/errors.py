@@ -174,8 +174,10 @@ def same_words(wanted: str, name: str) -> bool:
     """Whether ``name`` may be what was meant by ``wanted``, word by word: the same letters and
     digits once case and separators are dropped (``FRHAA``, ``FR_HAA``; ``link2``,
     ``link_02``), or every word of one found in the other, in any order, each the same word,
-    a near miss (difflib's ratio 0.75 or more: ``Join``/``Joint``, ``Rollert``/``Roller``) or
-    its initial (``l``/``left``), digits equal as numbers. So a word added or dropped is a
+    a near miss (difflib's ratio 0.75 or more: ``Join``/``Joint``, ``Rollert``/``Roller``; not
+    of a word of two letters, an acronym a letter more makes another: ``ur``/``mur``, which
+    suggested ``mur_desciption`` for ``ur_description``) or its initial (``l``/``left``),
+    digits equal as numbers. So a word added or dropped is a
     suggestion (``gazebo_HEAD_JOINT1_Link``, ``arm_left_1_joint`` for ``arm_1_joint``) and a
     word replaced is not (``wrist_3_joint``/``hand_3_joint``, ``ur_description``/
     ``sr_description``, ``arm_0_link``/``arm_6_link``). Chosen on 60 suggestions of the real
@@ -254,6 +256,8 @@ def _alike(one: str, two: str) -> bool:
         return False
     if min(len(one), len(two)) == 1:
         return one[0] == two[0]
+    if min(len(one), len(two)) == 2:  # an acronym: a letter more makes another (ur, mur)
+        return False
     return difflib.SequenceMatcher(None, one, two).ratio() >= 0.75
 
 
