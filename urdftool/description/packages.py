@@ -266,7 +266,9 @@ def package_of(path) -> Path | None:
     """The folder of the ROS package holding the file ``path``: the nearest folder at or above
     the file's own folder holding a package.xml or a manifest.xml (:data:`MANIFESTS`), without
     leaving its containment root; None when there is none. Links are not followed (the package
-    is where the file is named)."""
+    is where the file is named). (launch_configs.launch_file_packages answers it for every
+    launch file of a repository from the launch walk's listings: this function asked of each
+    cost 18 M instructions of r2d2's 560 M, session 20.)"""
     start = Path(os.path.abspath(path)).parent
     root = containment_root(start)
     for folder in [start, *start.parents]:
