@@ -136,7 +136,10 @@ U006 = declare("U006", "unresolved-package", Severity.WARNING, """
     A ``$(find pkg)`` names a package not installed here: the robot is not checked.
 
     urdftool looks at ``--package NAME=PATH``, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, and
-    package.xml files above the input and below the repository root; the message lists them.
+    package.xml (or rosbuild manifest.xml) files above the input and below the repository
+    root; the message lists them. When the file is not checked, the run exits 2 and says so
+    last: nothing in the file is known to be wrong, and a run that could not check it is no
+    pass.
 
     A package not installed is the environment's, not the robot's: a dependency the file's
     package.xml declares is there wherever the package is built, and another repository's
