@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 from dataclasses import dataclass
 
@@ -311,16 +312,24 @@ def available(kind: str, wanted: str, names) -> str:
     return Said(hint + written, (("available", written, f"{len(names)} {kind}"),))
 
 
+# Whether a Said formatted into a plain str raises (:class:`Said`): the test suite sets
+# URDFTOOL_STRICT_MESSAGES (its cases, commands and workers, and a sweep drafted with it), where
+# a wrapper that drops the parts fails; a user's run never fails on them (the report then
+# writes that list again, as for a plain str).
+STRICT_MESSAGES = bool(os.environ.get("URDFTOOL_STRICT_MESSAGES"))
+
+
 class Said(str):
     """A message holding parts that other findings of one report say word for word
     (:attr:`~urdftool.diagnostics.Finding.repeated`: ``(kind, text, detail)`` each), such as
     the list :func:`available` writes (``available``, the list as written, how many and what
     it lists: ``31 links``). A message built on it with ``+`` (``"...; " + available(...)``)
-    keeps them. An f-string or ``format`` would make a plain str without them, silently: it
-    raises TypeError instead (a wrapper writes ``"if ...: " + message``, or ``str(message)``
-    where it means to drop them); ``%`` on a Said raises too. A str method (``join``,
-    ``replace``) still drops them: tests/lint/test_cases.py holds every case's findings to
-    carry the parts their messages say."""
+    keeps them. An f-string or ``format`` would make a plain str without them, silently: under
+    :data:`STRICT_MESSAGES` (the test suite's) it raises TypeError instead (a wrapper writes
+    ``"if ...: " + message``, or ``str(message)`` where it means to drop them), and so does
+    ``"%s" % said``. A str method (``join``, ``replace``) still drops them:
+    tests/lint/test_cases.py holds every case's findings to carry the parts their messages
+    say."""
 
     repeated: tuple
 
@@ -330,12 +339,16 @@ class Said(str):
         return made
 
     def __format__(self, spec: str) -> str:
-        raise TypeError("a Said formatted into a str loses its repeated parts: build the "
-                        "message with + (or quote str(said) to drop them on purpose)")
+        if STRICT_MESSAGES:
+            raise TypeError("a Said formatted into a str loses its repeated parts: build the "
+                            "message with + (or quote str(said) to drop them on purpose)")
+        return format(str(self), spec)
 
     def __rmod__(self, other):
-        raise TypeError("a Said formatted with % loses its repeated parts: build the message "
-                        "with +")
+        if STRICT_MESSAGES:
+            raise TypeError("a Said formatted with % loses its repeated parts: build the "
+                            "message with +")
+        return NotImplemented
 
     def __add__(self, other: str) -> Said:
         return Said(str.__add__(self, other), self.repeated + getattr(other, "repeated", ()))
