@@ -414,3 +414,18 @@ def test_a_missing_mesh_is_quoted_as_its_file_writes_it(tmp_path):
     assert finding.message.startswith(
         f"link 'a' <visual>: mesh 'file://$(find bot)/meshes/base.stl' (expanded: "
         f"'file://{tmp_path}/meshes/base.stl') not found"), finding.message
+
+
+def test_a_mesh_in_a_workspaces_install_space_is_given_its_package_uri(tmp_path):
+    """Kinova's gen3_2f85.urdf names file:///root/c3pzero_ws/install/kortex_description/share/
+    kortex_description/arms/...: its package:// URI is what every machine with the package
+    finds (the message said only "use package://PKG/..."); /opt/ros's install says so too
+    (its own words), and a path in no install space keeps the general advice."""
+    (tmp_path / ".git").mkdir()
+    [(_, message)] = _u407(tmp_path / "r.urdf",
+                           "file:///root/ws/install/kd/share/kd/meshes/a.dae", "U409")
+    assert message.endswith("it is in the install space of package 'kd' (share/kd), there "
+                            "only where that workspace is built; write "
+                            "'package://kd/meshes/a.dae'"), message
+    [(_, message)] = _u407(tmp_path / "r.urdf", "/home/x/meshes/c.stl", "U409")
+    assert message.endswith("use package://PKG/... for files of another package"), message

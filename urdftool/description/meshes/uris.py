@@ -255,8 +255,7 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
                     certain=False)
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
-                "repository: use package://PKG/... for files of another package"
-                f"{_rooted_by_mistake(named, base)}"))
+                f"repository: {_as_package_uri(written)}{_rooted_by_mistake(named, base)}"))
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
         looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
@@ -269,6 +268,24 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
                                       f"{', '.join(MESH_EXTENSIONS)}; not opened"))
     return path
+
+
+def _as_package_uri(written: str) -> str:
+    """Advice for a mesh named by an absolute path outside the repository: the package:// URI
+    of a path in a package's install space (``.../install/kortex_description/share/
+    kortex_description/arms/...``, a colcon workspace on the machine the robot was exported
+    from: Kinova's gen3_2f85.urdf), as loaders find it on any machine with the package; else
+    how to name another package's file."""
+    shared = _INSTALLED_SHARE.fullmatch(written)
+    if shared is None:
+        return "use package://PKG/... for files of another package"
+    package, tail = shared.groups()
+    return (f"it is in the install space of package '{package}' (share/{package}), there only "
+            f"where that workspace is built; write 'package://{package}/{tail}'")
+
+
+# a file of a package's install space: PREFIX/share/PACKAGE/FILE (colcon's, catkin's, ROS's)
+_INSTALLED_SHARE = re.compile(r".*/share/([^/]+)/([^/].*)")
 
 
 def _rooted_by_mistake(named: str, base: str) -> str:
