@@ -116,8 +116,22 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
             f"report; nothing in {'it' if one else 'them'} is known to be wrong, and the run "
             "exits 2: not a pass). "
             "Install the dependencies (rosdep install --from-paths . --ignore-src) or pass "
-            "--package NAME=PATH", err=True)
+            "--package NAME=PATH" + _undeclared(run), err=True)
     return code
+
+
+def _undeclared(run) -> str:
+    """What the closing line adds when a package a file was not checked for is declared by no
+    package.xml (its U006 a warning, not a note): rosdep installs nothing for it, and it may
+    be a misspelt name (doosan-robot2's 23 files naming dsr_description, its package
+    dsr_description2)."""
+    from urdftool.diagnostics import Severity
+
+    if all(finding.severity is Severity.INFO for result in run.results
+           for finding in result.not_checked_by):
+        return ""
+    return ("; rosdep installs only what a package.xml declares: U006 says where none does "
+            "(and a name the package may be misspelt for)")
 
 
 def _default_cache():

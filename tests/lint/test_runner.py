@@ -162,6 +162,9 @@ def test_a_robot_not_expanded_for_a_package_not_installed_is_no_pass_nor_error(
         assert result.exit_code == 2 and said in result.output, result.output
         # about the robot and this machine, not urdftool's own failure
         assert "urdftool: error" not in result.output, result.output
+        # an undeclared package is none rosdep installs (doosan-robot2's misspelt name)
+        assert ("rosdep installs only what a package.xml declares" in result.output) is \
+            (not declared), result.output
         if not extra:  # the summary line does not call it checked
             assert "0 files checked, 1 not (a package it needs is not installed)" \
                 in result.stdout, result.stdout
