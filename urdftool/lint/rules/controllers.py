@@ -416,11 +416,12 @@ def _interface_fix(controller: Controller, offered: set, missing: list[str]) -> 
         use = "use " + " or ".join(_alternatives(controller, kinds))
     else:
         use = "change the controller"
+    a = "an" if wanted[:1] in "aeiou" else "a"  # (an effort command interface)
     if controller.ros == 2:
-        offer = f"a {wanted} command interface in its <ros2_control> joint"
+        offer = f"{a} {wanted} command interface in its <ros2_control> joint"
     else:
-        offer = (f"{wanted.capitalize()}JointInterface in its transmission, or a {wanted} command "
-                 "interface in <ros2_control>")
+        offer = (f"{wanted.capitalize()}JointInterface in its transmission, or {a} {wanted} "
+                 "command interface in <ros2_control>")
     if known and known.package == "diff_drive_controller":
         return f"diff_drive_controller turns its wheels by {wanted}: make the joint offer {wanted} ({offer})"
     return f"{use}, or make the joint offer {wanted} ({offer})"
