@@ -20,6 +20,12 @@ CORPUS = Path(os.environ.get("URDFTOOL_CORPUS", ROOT.parent / "shared" / "corpus
 # `urdftool check` keeps results in .urdftool_cache by default; a test that patches urdftool's
 # internals must see them run, so the tests use the cache only where they name --cache-dir.
 os.environ["URDFTOOL_NO_CACHE"] = "1"
+# a message's repeated parts dropped by an f-string fail (urdftool.errors.Said), in the
+# commands and workers the tests start too
+os.environ["URDFTOOL_STRICT_MESSAGES"] = "1"
+import urdftool.errors  # noqa: E402 (imported already when pytest loaded urdftool's plugin)
+
+urdftool.errors.STRICT_MESSAGES = True
 
 
 @functools.cache

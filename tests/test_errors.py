@@ -123,6 +123,7 @@ def test_a_close_name_holding_every_word_of_the_one_wanted_comes_first():
     # ... and a word replaced, which misled (fresh17: wheel_left_joint on a TIAGo)
     ("wheel_left_joint", "torso_lift_joint", False), ("wrist_3_joint", "hand_3_joint", False),
     ("ur_description", "sr_description", False), ("arm_0_link", "arm_6_link", False),
+    ("ur_description", "mur_desciption", False), ("ur", "mur", False),  # (session 20)
     ("shoulder_pan_joint", "forearm_hand_joint", False), ("link4", "imu_link", False),
     # ... and words dropped down to a kind and a number (session 19: xArm Lite 6's gripper
     # controller on the arm alone), not down to a parameter's word (joint_state_broadcaster's)
@@ -197,3 +198,24 @@ def test_where_a_package_was_looked_for_is_a_part_of_its_message_named():
         [(kind, part, name)] = error.repeated
         assert (kind, name) == ("searched", "pkg") and str(error).endswith(part)
         assert part.startswith("; looked in: /a, /b. Pass --package pkg=PATH")
+
+
+def test_a_said_message_is_never_rebuilt_into_a_plain_str_silently():
+    """A Said carries the parts a report says once (an available list); a wrapper that rebuilt
+    the message with an f-string dropped them without a word (failing_defaults' U005 wrote
+    the list in full at each finding). Formatting one raises; + and a slice keep them; str()
+    drops them on purpose; a LoadError's message carries its error's parts."""
+    said = "joint 'x' is not known; " + errors.available("joints", "x", ["a", "b"])
+    [part] = said.repeated
+    with pytest.raises(TypeError, match="loses its repeated parts"):
+        f"if it runs: {said}"
+    with pytest.raises(TypeError, match="loses its repeated parts"):
+        "if it runs: {}".format(said)
+    with pytest.raises(TypeError, match="loses its repeated parts"):
+        "if it runs: %s" % said
+    assert ("if it runs: " + said).repeated == (part,)
+    assert said[len("joint 'x' "):].repeated == (part,) and said[:5].repeated == ()
+    assert type(str(said)) is str and type(f"{said!s}") is str
+    assert part == ("available", "available joints: a, b", "2 joints")
+    error = errors.LoadError("xacro", said, None, repeated=said.repeated)
+    assert (error.message + "; more").repeated == (part,)

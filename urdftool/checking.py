@@ -100,18 +100,38 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
         terminal.write_output(output, written.getvalue())
     else:
         report(run.results, sys.stdout)
+        sys.stdout.flush()  # (the lines below come after the report in a log of both streams)
     for error in run.errors:  # settings broken for some files; the others were checked
         terminal.say(f"urdftool: error: {error}", err=True)
     if run.unexpanded:  # the environment's: said once, after the report that locates each
         from urdftool.report.summary import counted
 
-        needs = "it needs" if len(run.unexpanded) == 1 else "they need"
+        # (not "urdftool: error:", which read as urdftool's own failure: it is about the
+        # robot's files and this machine, and the run is no pass)
+        one = len(run.unexpanded) == 1
         terminal.say(
-            f"urdftool: error: {counted(len(run.unexpanded), 'file')} not checked: a package "
-            f"{needs} is not installed here (U006 in the report); install the dependencies "
-            "(rosdep install --from-paths . --ignore-src) or pass --package NAME=PATH",
-            err=True)
+            f"urdftool: {counted(len(run.unexpanded), 'file')} not checked: a package "
+            f"{'it needs' if one else 'they need'} is not installed here, so "
+            f"{'its robot was' if one else 'their robots were'} not expanded (U006 in the "
+            f"report; nothing in {'it' if one else 'them'} is known to be wrong, and the run "
+            "exits 2: not a pass). "
+            "Install the dependencies (rosdep install --from-paths . --ignore-src) or pass "
+            "--package NAME=PATH" + _undeclared(run), err=True)
     return code
+
+
+def _undeclared(run) -> str:
+    """What the closing line adds when a package a file was not checked for is declared by no
+    package.xml (its U006 a warning, not a note): rosdep installs nothing for it, and it may
+    be a misspelt name (doosan-robot2's 23 files naming dsr_description, its package
+    dsr_description2)."""
+    from urdftool.diagnostics import Severity
+
+    if all(finding.severity is Severity.INFO for result in run.results
+           for finding in result.not_checked_by):
+        return ""
+    return ("; rosdep installs only what a package.xml declares: U006 says where none does "
+            "(and a name the package may be misspelt for)")
 
 
 def _default_cache():

@@ -138,8 +138,8 @@ class Finding(Frozen):
         rule gives for what it assumed (``why``: a Gazebo plugin's "the robot is ROS 2 (its
         package builds with ament_cmake ...)"), where a package not found was looked for
         (``searched``, detail: its name), the names there are where a name is not known
-        (``available``, detail: what they are, ``links``: urdftool.errors.available's
-        "available links: a, b, ..."). A report for people writes each once per file and
+        (``available``, detail: how many and what they are, ``31 links``:
+        urdftool.errors.available's "available links: a, b, ..."). A report for people writes each once per file and
         refers to it after (urdftool.report.text_format); the machine formats keep every
         message whole
     """

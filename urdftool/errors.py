@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 from dataclasses import dataclass
 
@@ -53,14 +54,16 @@ class LoadError(UrdftoolError):
     undefined: for 'xacro', True when it fails on a name the file uses and does not define (a
         property, a macro, a property to forward), which a robot including it may define
     repeated: the parts of the message other findings say word for word (for 'package', where
-        it was looked for: :attr:`PackageNotFound.repeated`)
+        it was looked for: :attr:`PackageNotFound.repeated`; an available list), which
+        ``message`` carries too (a :class:`Said`)
     """
 
     def __init__(self, kind: str, message: str, location, subject: str | None = None,
                  certain: bool = True, close: tuple = (), whatever_args: bool = False,
                  declared: bool = False, undefined: bool = False, repeated: tuple = ()):
         self.kind = kind
-        self.message = message
+        # (a Said: a message built on it with + keeps them, an f-string raises)
+        self.message = Said(message, repeated) if repeated else message
         self.location = location
         self.subject = subject
         self.certain = certain
@@ -172,8 +175,10 @@ def same_words(wanted: str, name: str) -> bool:
     """Whether ``name`` may be what was meant by ``wanted``, word by word: the same letters and
     digits once case and separators are dropped (``FRHAA``, ``FR_HAA``; ``link2``,
     ``link_02``), or every word of one found in the other, in any order, each the same word,
-    a near miss (difflib's ratio 0.75 or more: ``Join``/``Joint``, ``Rollert``/``Roller``) or
-    its initial (``l``/``left``), digits equal as numbers. So a word added or dropped is a
+    a near miss (difflib's ratio 0.75 or more: ``Join``/``Joint``, ``Rollert``/``Roller``; not
+    of a word of two letters, an acronym a letter more makes another: ``ur``/``mur``, which
+    suggested ``mur_desciption`` for ``ur_description``) or its initial (``l``/``left``),
+    digits equal as numbers. So a word added or dropped is a
     suggestion (``gazebo_HEAD_JOINT1_Link``, ``arm_left_1_joint`` for ``arm_1_joint``) and a
     word replaced is not (``wrist_3_joint``/``hand_3_joint``, ``ur_description``/
     ``sr_description``, ``arm_0_link``/``arm_6_link``). Chosen on 60 suggestions of the real
@@ -252,6 +257,8 @@ def _alike(one: str, two: str) -> bool:
         return False
     if min(len(one), len(two)) == 1:
         return one[0] == two[0]
+    if min(len(one), len(two)) == 2:  # an acronym: a letter more makes another (ur, mur)
+        return False
     return difflib.SequenceMatcher(None, one, two).ratio() >= 0.75
 
 
@@ -302,15 +309,27 @@ def available(kind: str, wanted: str, names) -> str:
                 f"(${{{bare.group(1)}}}), which xacro leaves as written; ")
     quote = any(name != name.strip() for name in names)
     written = f"available {kind}: {listed(names, quote=quote) or '(none)'}"
-    return Said(hint + written, (("available", written, kind),))
+    return Said(hint + written, (("available", written, f"{len(names)} {kind}"),))
+
+
+# Whether a Said formatted into a plain str raises (:class:`Said`): the test suite sets
+# URDFTOOL_STRICT_MESSAGES (its cases, commands and workers, and a sweep drafted with it), where
+# a wrapper that drops the parts fails; a user's run never fails on them (the report then
+# writes that list again, as for a plain str).
+STRICT_MESSAGES = bool(os.environ.get("URDFTOOL_STRICT_MESSAGES"))
 
 
 class Said(str):
     """A message holding parts that other findings of one report say word for word
     (:attr:`~urdftool.diagnostics.Finding.repeated`: ``(kind, text, detail)`` each), such as
-    the list :func:`available` writes (``available``, the list as written, what it lists). A
-    message built on it with ``+`` (``"...; " + available(...)``) keeps them; an f-string or a
-    str method makes a plain str, which has none."""
+    the list :func:`available` writes (``available``, the list as written, how many and what
+    it lists: ``31 links``). A message built on it with ``+`` (``"...; " + available(...)``)
+    keeps them. An f-string or ``format`` would make a plain str without them, silently: under
+    :data:`STRICT_MESSAGES` (the test suite's) it raises TypeError instead (a wrapper writes
+    ``"if ...: " + message``, or ``str(message)`` where it means to drop them), and so does
+    ``"%s" % said``. A str method (``join``, ``replace``) still drops them:
+    tests/lint/test_cases.py holds every case's findings to carry the parts their messages
+    say."""
 
     repeated: tuple
 
@@ -319,11 +338,28 @@ class Said(str):
         made.repeated = tuple(repeated)
         return made
 
+    def __format__(self, spec: str) -> str:
+        if STRICT_MESSAGES:
+            raise TypeError("a Said formatted into a str loses its repeated parts: build the "
+                            "message with + (or quote str(said) to drop them on purpose)")
+        return format(str(self), spec)
+
+    def __rmod__(self, other):
+        if STRICT_MESSAGES:
+            raise TypeError("a Said formatted with % loses its repeated parts: build the "
+                            "message with +")
+        return NotImplemented
+
     def __add__(self, other: str) -> Said:
         return Said(str.__add__(self, other), self.repeated + getattr(other, "repeated", ()))
 
     def __radd__(self, other: str) -> Said:
         return Said(str.__add__(other, self), getattr(other, "repeated", ()) + self.repeated)
+
+    def __getitem__(self, key) -> Said:
+        """A piece (``message[len(label) + 2:]``), with the parts it still holds whole."""
+        piece = str.__getitem__(self, key)
+        return Said(piece, tuple(part for part in self.repeated if part[1] in piece))
 
 
 def listed(names, quote: bool = True) -> str:
@@ -405,6 +441,16 @@ class MeshProblem(LocatedError):
     def __str__(self) -> str:
         return self.message
 
+    def quoting(self, uri: str, written: str) -> str:
+        """The message with the mesh quoted as ``written`` in the user's file (a xacro's
+        ``file://$(find pkg)/meshes/a.stl``), ``uri`` (what the robot, expanded, names: the
+        message's quote) kept as detail: a message quoting only the expanded absolute path
+        named what no file of the user says."""
+        quoted = f"mesh '{uri}'"
+        if written == uri or not self.message.startswith(quoted):
+            return self.message
+        return f"mesh '{written}' (expanded: '{uri}'){self.message[len(quoted):]}"
+
 
 class SrdfError(LocatedError):
     """The SRDF cannot be read; the message says where and why."""
@@ -417,7 +463,7 @@ class ConfigError(LocatedError):
     command-line option: the command adds it."""
 
     def __init__(self, message: str, where: str | None = None):
-        super().__init__(f"{where}: {message}" if where else message)
+        super().__init__(f"{where}: " + message if where else message)
         self.where = where
         self.argument: str | None = None
 
@@ -452,7 +498,7 @@ class IKError(LocatedError):
     came from one. A link name the robot does not have is an :class:`UnknownLink`."""
 
     def __init__(self, message: str, element=None, where: str | None = None):
-        super().__init__(f"{where}: {message}" if where else message, element)
+        super().__init__(f"{where}: " + message if where else message, element)
         self.where = where
 
 
@@ -478,7 +524,7 @@ class UnknownLink(UnknownName):
     """A link asked for by name that the robot does not have; the message lists the others."""
 
     def __init__(self, wanted: str, names):
-        super().__init__(f"link '{wanted}' does not exist; {available('links', wanted, names)}")
+        super().__init__(f"link '{wanted}' does not exist; " + available("links", wanted, names))
         self.wanted = wanted
 
     @classmethod

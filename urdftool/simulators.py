@@ -103,7 +103,7 @@ def parse_target(text: str) -> Target:
     if name not in SIMULATORS:
         from urdftool.errors import available
 
-        raise UsageError(f"unknown target '{text}'; {available('targets', name, TARGETS)}")
+        raise UsageError(f"unknown target '{text}'; " + available("targets", name, TARGETS))
     if not version:
         return Target(name)
     try:

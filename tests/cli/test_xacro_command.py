@@ -80,3 +80,19 @@ def test_the_urdf_is_written_byte_for_byte_as_xacro_writes_it(run_cli, tmp_path)
     source.write_text(ORDER)
     for path in (source, HUMANOID):
         assert run_cli("xacro", path).stdout == xacro_library(path), path
+
+
+def test_a_note_whose_cause_lists_where_a_package_was_looked_for_is_printed(run_cli, tmp_path):
+    """A .urdf holding a xacro include of a package not installed: its note quotes the load
+    error, whose message carries where the package was looked for (errors.Said); the command
+    printed it with an f-string, which a Said refuses under the test suite (TypeError)."""
+    robot = tmp_path / "r.urdf"
+    robot.write_text("""<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:include filename="$(find ghost_pkg)/urdf/x.xacro"/>
+  <link name="a"/>
+</robot>
+""")
+    result = run_cli("xacro", robot, "--timeout", "0")
+    assert result.exit_code == 0, result.output
+    assert ":2: warning: file is named .urdf but contains xacro" in result.stderr
+    assert "package 'ghost_pkg' not found" in result.stderr

@@ -650,7 +650,7 @@ def test_a_mesh_in_a_ros_distributions_install_is_outside_but_not_certainly_miss
     assert str(error.value) == (
         f"mesh '{named}' is in ROS humble's install of 'ur_description' (outside the repository: "
         "not opened), there only where ROS humble and ur_description are installed; write "
-        "package://ur_description/meshes/ur5/visual/base.dae")
+        "'package://ur_description/meshes/ur5/visual/base.dae'")
     with pytest.raises(MeshProblem) as error:
         resolve(_robot(tmp_path, "/home/me/ws/meshes/base.dae"), "/home/me/ws/meshes/base.dae")
     assert error.value.kind == "outside" and error.value.certain

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
@@ -63,6 +64,12 @@ def test_not_found_lists_where_it_looked(tmp_path):
     with pytest.raises(PackageNotFound) as error:
         PackageResolver(start=tmp_path, environ={"ROS_PACKAGE_PATH": str(tmp_path)}).find("ghost")
     assert "ROS_PACKAGE_PATH" in str(error.value) and "--package ghost=PATH" in str(error.value)
+    # a rosbuild manifest.xml makes a package too: the places say so (they said package.xml)
+    (tmp_path / ".git").mkdir()
+    with pytest.raises(PackageNotFound) as error:
+        PackageResolver(start=tmp_path, environ={}).find("ghost")
+    assert error.value.searched == [f"package.xml or manifest.xml above {tmp_path} up to "
+                                    f"{tmp_path}", f"package.xml or manifest.xml below {tmp_path}"]
 
 
 def test_mesh_uris(tmp_path):
@@ -487,3 +494,21 @@ def test_a_rosbuild_package_s_messages_name_its_manifest_xml_and_u019_leaves_it(
     assert [(d["line"], d["code"]) for d in found] == [(3, "U006")], result.output
     assert "the manifest.xml of 'rb_description' does not declare it" in found[0]["message"]
     assert '<depend package="missing_pkg"/>' in found[0]["message"]
+
+
+def test_a_launch_files_package_is_the_one_package_of_says():
+    """launch_configs.launch_file_packages answers package_of for every launch file of a
+    repository from the launch walk's listings (asking package_of of each cost 3 % of a check
+    of r2d2, session 20): the twin must give package_of's answers."""
+    from urdftool.description.launch_configs import launch_file_packages
+    from urdftool.description.packages import package_of
+
+    cases = Path(__file__).resolve().parents[1] / "cases"
+    for case in sorted(cases.glob("U6*")) + sorted(cases.glob("U0*")):
+        if not case.is_dir():
+            continue
+        for launch, holder in launch_file_packages(case).items():
+            folder = package_of(launch)
+            expected = None if folder is None or not str(folder).startswith(str(case)) \
+                else str(folder)
+            assert holder == expected, (launch, holder, folder)

@@ -13,6 +13,7 @@ other files (included xacro, controller YAML, SRDF, spec) are companions found b
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -29,6 +30,27 @@ def test_case_findings_match_marks(case):
     severities = {(Path(f.file).name, f.line, f.code): f.severity.value for f in result.findings}
     for mark, severity in expected_severities(case).items():
         assert severities[mark] == severity, f"{mark}: {severities[mark]}, marked {severity}"
+    for finding in result.findings:
+        _carries_its_parts(finding)
+
+
+# the words of the parts a report says once (Finding.repeated): errors.available's list, the
+# "looked in" of errors.PackageNotFound
+_PARTS = {"available": re.compile(r"\bavailable [a-z ]+: "), "searched": re.compile("; looked in: ")}
+
+
+def _carries_its_parts(finding):
+    """A finding whose message holds a part other findings repeat carries it as a field
+    (``Finding.repeated``): a wrapper rebuilding a message (a condition before it, a clause
+    after) with an f-string or a str method dropped it silently, and the text report wrote the
+    list in full at every finding. errors.Said refuses f-strings; this finds the rest (a
+    ``join``, a ``replace``, a ``%`` of a tuple)."""
+    for kind, words in _PARTS.items():
+        if words.search(finding.message):
+            assert any(part[0] == kind and part[1] in finding.message
+                       for part in finding.repeated), \
+                f"{finding.location}: {finding.code} says a part of kind {kind!r} it does not " \
+                f"carry (Finding.repeated: {finding.repeated}): {finding.message}"
 
 
 def test_every_case_marks_its_own_code():

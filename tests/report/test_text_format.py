@@ -129,7 +129,7 @@ def test_call_sites_write_each_file_once_for_its_run_of_lines():
 
 def _listing(code: str, name: str, message: str, line: int) -> Finding:
     """A finding as a rule makes it of ``message``, which may hold a list ``available`` wrote."""
-    return Finding(code, name, Severity.ERROR, message, Location("robot.urdf", line),
+    return Finding(code, name, Severity.ERROR, str(message), Location("robot.urdf", line),
                    repeated=getattr(message, "repeated", ()))
 
 
@@ -518,7 +518,7 @@ def test_an_available_list_is_said_once_only_where_a_rule_wrote_it():
     text = _text([FileResult("r.urdf", findings)])
     assert text.count("link_00, link_01") == 2 and "listed at" not in text, text
     written = available("links", "x", [f"link_{i:02d}" for i in range(12)])
-    assert written == quoted and written.repeated == (("available", quoted, "links"),)
+    assert written == quoted and written.repeated == (("available", quoted, "12 links"),)
     assert ("names x; " + written).repeated == written.repeated  # kept through +
 
 

@@ -117,7 +117,7 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
         from urdftool.errors import available as choices
 
         raise UsageError(f"unknown loader '{unknown[0]}'; "
-                         f"{choices('loaders', unknown[0], LOADERS)}")
+                         + choices("loaders", unknown[0], LOADERS))
     robot = load(path, xacro_args=xacro_args or {}, packages=packages or {},
                  allow_env=allow_env)
     _refuse_files_urdftool_does_not_open(robot)

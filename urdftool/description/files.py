@@ -598,6 +598,7 @@ def enclosing_root(folder: Path) -> Path | None:
 # ament's), else manifest.xml (a rosbuild package, ROS 1's only: rospack, roslaunch's $(find)
 # and resource_retriever's package:// find it by its folder's name). The one list of them.
 MANIFESTS = ("package.xml", "manifest.xml")
+MANIFESTS_SAID = " or ".join(MANIFESTS)  # as a message names them: what makes a package
 
 
 # ---- a record compared with the disk ----------------------------------------------------

@@ -164,7 +164,7 @@ def layout(folder: Path, name: str, root: Path) -> Layout:
     if not reader.build:  # colcon and catkin build no such folder: another build lays out
         # share/NAME (icub-models' placeholder package.xml, its share folder made by the
         # repository's own CMake from three source folders)
-        reader.doubt(None, "no CMakeLists.txt, setup.py or setup.cfg beside its package.xml: "
+        reader.doubt(None, "no CMakeLists.txt, setup.py or setup.cfg in the package's folder: "
                            "another build makes its share folder")
         # the repository's own CMake above it, which may install a folder as share/NAME
         # (icub-models: install(DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/iCub DESTINATION share)

@@ -230,10 +230,11 @@ def _load_disguised_xacro(plain: Robot, first, data, args, allow_env, limit):
         robot = _load_xacro(plain.path, plain.display, data, args, plain.resolver, allow_env,
                             limit)
     except LoadError as error:
-        return plain, LoadNote("xacro-in-urdf", where, (
+        # (a plain str: a note is printed as it is; its cause carries the repeated parts)
+        return plain, LoadNote("xacro-in-urdf", where, str(
             f"file is {named} but contains xacro ({_shown_use(first)}), which xacro cannot "
-            f"expand ({error.message}) and URDF parsers ignore{read_by}; remove it or rename "
-            "the file .urdf.xacro"), cause=error)
+            "expand (" + error.message + f") and URDF parsers ignore{read_by}; remove it or "
+            "rename the file .urdf.xacro"), cause=error)
     if _only_in_gazebo(first.getroottree().getroot()):  # what URDF parsers skip
         return robot, LoadNote("xacro-in-urdf", where, (
             f"file is {named} but needs xacro ({_shown_use(first)} at this line), only inside "

@@ -109,7 +109,7 @@ def mimic_source(robot, name: str, variable_names: Collection[str], seen=(),
         master = mimic.get("joint")
         if master not in robot.joints:
             raise MimicError(f"joint '{name}' mimics unknown joint '{master}'; "
-                             f"{available('joints', master or '', robot.joints)}", mimic)
+                             + available("joints", master or "", robot.joints), mimic)
         steps.append((name, _attribute(mimic, "multiplier", 1.0),
                       _attribute(mimic, "offset", 0.0)))
         name = master
@@ -428,7 +428,7 @@ def _column(index: dict, name: str, mimics: dict | None, where: str | None = Non
     if mimics and name in mimics:
         raise ConfigError(f"joint '{name}' mimics '{mimics[name]}': set '{mimics[name]}' "
                           "instead", where)
-    raise ConfigError(f"unknown joint '{shown_word(name)}'; {available('joints', name, index)}",
+    raise ConfigError(f"unknown joint '{shown_word(name)}'; " + available("joints", name, index),
                       where)
 
 

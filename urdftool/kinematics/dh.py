@@ -448,7 +448,7 @@ def table_columns(table: DHTable, model) -> list[int]:
     for joint in table.joints:
         if joint.joint not in columns:
             raise DHError(f"D-H table joint '{joint.joint}' is not a joint of the robot; "
-                          f"{available('joints', joint.joint, columns)}")
+                          + available("joints", joint.joint, columns))
         result.append(columns[joint.joint])
     return result
 

@@ -129,7 +129,7 @@ def read_targets(path: str, degrees: bool = False) -> list[Target]:
     def check(names):
         for name in names:
             if name not in known:
-                raise ConfigError(f"unknown column '{name}'; {available('columns', name, known)}",
+                raise ConfigError(f"unknown column '{name}'; " + available("columns", name, known),
                                   f"{path}: header")
         given = set(names)
         for group in (_POSITION, _RPY, _QUATERNION):

@@ -70,8 +70,9 @@ from urdftool.description.record import entry_key
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity, display_path
 from urdftool.errors import UsageError
 
-SCHEMA = 5  # 3: an entry's dependencies are its check's record; 4: findings' repeated parts;
-# 5: the names a message lists as available among those parts (urdftool.errors.available)
+SCHEMA = 6  # 3: an entry's dependencies are its check's record; 4: findings' repeated parts;
+# 5: the names a message lists as available among those parts (urdftool.errors.available);
+# 6: an available list's detail says how many ("31 links")
 FOLDER = ".urdftool_cache"
 MAX_ENTRY_BYTES = 16 * 1024 * 1024
 _NO_KEY = ("no signing key: $XDG_CACHE_HOME/urdftool/key (or ~/.cache/urdftool/key) could not "

@@ -136,7 +136,7 @@ class Rule(Frozen):
         if severity is None and type(message) is str:  # most findings: as the rule says
             return Finding(self.code, self.name, self.severity, message, location, fix,
                            self.target, not_checked, repeated)
-        repeated = tuple(repeated) + getattr(message, "repeated", ())
+        repeated = tuple(dict.fromkeys(tuple(repeated) + getattr(message, "repeated", ())))
         if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
             raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
                              f"more severe ({Severity(severity).value})")

@@ -131,9 +131,9 @@ def load_error_findings(error: LoadError) -> list[Finding]:
         # a dependency the package.xml declares: installed wherever the package is built, a
         # question of the workspace, not a defect of the file (a note; the run still exits 2)
         return [rule.finding(Conditional(message, Severity.INFO), error.location,
-                             not_checked=True, repeated=error.repeated)]
+                             not_checked=True)]  # (the message carries error.repeated)
     return [rule.finding(message if error.certain else Conditional(message), error.location,
-                         not_checked=unexpanded, repeated=error.repeated)]
+                         not_checked=unexpanded)]
 
 
 def note_findings(robot) -> list[Finding]:

@@ -334,7 +334,7 @@ def _request(options: dict) -> CheckRequest:
         for name in (given if isinstance(given, Mapping) else ()):
             if name not in fields:
                 raise OptionError(str(name), f"no option {name!r}; "
-                                             f"{available('options', str(name), fields)}")
+                                             + available("options", str(name), fields))
     companions = options.get("companions")
     if isinstance(companions, Mapping):
         options = {**options, "companions": Companions(**companions)}

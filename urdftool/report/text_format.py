@@ -44,9 +44,7 @@ Notes = bool | Callable[[object], bool]  # for all results, or per result
 # jumps from quote to slash to "<" instead of trying the look-behind at every character of every
 # message (10,000 findings' messages: a quarter of the time).
 _NAME = re.compile(r"'[^'\s]*'|/(?<=[\s(]/)[^\s)]*|</?[A-Za-z_][\w:.\-]*>")
-_LONG_LIST = 60  # [characters] a list of names shorter than this is written every time
-# how urdftool.errors.first_listed ends a list it cut: ", ... (31 in all)"
-_COUNTED = re.compile(r", \.\.\. \((\d+) in all\)$")
+_LONG_LIST = 60  # [characters] a list of names shorter than this (all shown) is written every time
 # a figure: a number standing alone (not part of a word, a name, a unit's power like m^3 or a
 # version like 1.2.3): (?<![\w.+\-^/])[-+]?\d+..., written to start with its first character
 # ([-+\d], the character before it looked at behind that), so that the search skips from sign
@@ -442,15 +440,15 @@ def _once(message: str, location, listed: dict, repeated: tuple = ()) -> str:
     for kind, part, detail in repeated:  # (Finding.repeated: the parts others say again)
         if part not in message:
             continue
-        if kind == "available":  # (urdftool.errors.available: "available links: a, b, ...")
-            names = part[len(f"available {detail}: "):]
-            count = _COUNTED.search(names)
-            if len(names) - (len(count.group()) if count else 0) < _LONG_LIST:
+        if kind == "available":  # (urdftool.errors.available: "available links: a, b, ...",
+            count, what = detail.split(" ", 1)  # detail "31 links": how many, what they are)
+            cut = int(count) > LISTED  # (the list shows the first LISTED, then the count)
+            if not cut and len(part) - len(f"available {what}: ") < _LONG_LIST:
                 continue  # (a short list: written every time)
             at = first(part)
             if at is not None:
-                message = message.replace(part, f"available {detail}: " + (
-                    f"the {count.group(1)} listed at {at}" if count else f"as listed at {at}"), 1)
+                message = message.replace(part, f"available {what}: " + (
+                    f"the {count} listed at {at}" if cut else f"as listed at {at}"), 1)
         elif kind in _SAID_AGAIN:
             at = first(part)
             if at is not None:

@@ -423,3 +423,40 @@ def test_an_empty_package_name_before_a_bare_file_name_is_not_advised_as_a_packa
     [message] = [f.message for f in findings if f.code == "U415"]
     assert "package://foot.stl/" not in message, message
     assert "'package://PACKAGE/foot.stl'" in message, message
+
+
+def test_a_missing_mesh_is_quoted_as_its_file_writes_it(tmp_path):
+    """A xacro's ``file://$(find bot)/meshes/base.stl`` was quoted as xacro expanded it, an
+    absolute path no file of the user says: quoted as written, the expanded URI after it."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    (tmp_path / "CMakeLists.txt").write_text("install(DIRECTORY meshes DESTINATION share/bot)\n")
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text("""<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+<link name="a"><visual><geometry>
+<mesh filename="file://$(find bot)/meshes/base.stl"/>
+</geometry></visual></link></robot>
+""")
+    result = load_and_check(str(robot), CheckOptions())
+    [finding] = [f for f in result.findings if f.code == "U408"]
+    assert finding.line == 3
+    assert finding.message.startswith(
+        f"link 'a' <visual>: mesh 'file://$(find bot)/meshes/base.stl' (expanded: "
+        f"'file://{tmp_path}/meshes/base.stl') not found"), finding.message
+
+
+def test_a_mesh_in_a_workspaces_install_space_is_given_its_package_uri(tmp_path):
+    """Kinova's gen3_2f85.urdf names file:///root/c3pzero_ws/install/kortex_description/share/
+    kortex_description/arms/...: its package:// URI is what every machine with the package
+    finds (the message said only "use package://PKG/..."); /opt/ros's install says so too
+    (its own words), and a path in no install space keeps the general advice."""
+    (tmp_path / ".git").mkdir()
+    [(_, message)] = _u407(tmp_path / "r.urdf",
+                           "file:///root/ws/install/kd/share/kd/meshes/a.dae", "U409")
+    assert message.endswith("it is in the install space of package 'kd' (share/kd), there "
+                            "only where that workspace is built; write "
+                            "'package://kd/meshes/a.dae'"), message
+    [(_, message)] = _u407(tmp_path / "r.urdf", "/home/x/meshes/c.stl", "U409")
+    assert message.endswith("use package://PKG/... for files of another package"), message

@@ -16,8 +16,8 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
-from urdftool.description.files import (inside, kind_of, listing, no_file_there, real_path,
-                                        resolved, walk)
+from urdftool.description.files import (MANIFESTS_SAID, inside, kind_of, listing,
+                                        no_file_there, real_path, resolved, walk)
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_of, package_uri_parts)
 from urdftool.description.run_memo import per_run
@@ -131,7 +131,7 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
             owner, declares, manifest = declaring_package(robot.path, package) \
                 if robot.path != "-" else (None, False, "package.xml")
             error = error.declared(owner, declares, manifest=manifest)
-            lacking = f"; {seen} (no package.xml) does not hold '{tail}'" if seen else ""
+            lacking = f"; {seen} (no {MANIFESTS_SAID}) does not hold '{tail}'" if seen else ""
             misspelt = any(_misspelling(package, close) for close in error.close or ())
             below = _named_below(base, package) if not tail else None
             held = (f"; not certain: '{below}', below the robot file, has that name, where "
@@ -150,7 +150,7 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                                       "'package://' (PyBullet; Pinocchio given this folder) "
                                       "find it", certain=False, repeated=error.repeated)
     return MeshProblem("package", f"mesh '{uri}': {error}; not certain: {folder} holds a "
-                                  f"folder '{package}' (no package.xml) with this file, where "
+                                  f"folder '{package}' (no {MANIFESTS_SAID}) with this file, where "
                                   "PyBullet (which looks in every folder above the robot file) "
                                   "and loaders given it as a package path (Pinocchio's "
                                   "package_dirs) find it", certain=False,
@@ -273,12 +273,11 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
                 return MeshProblem("outside", (
                     f"mesh '{uri}' is in ROS {distro}'s install of '{package}' (outside the "
                     f"repository: not opened), there only where ROS {distro} and {package} are "
-                    f"installed; write package://{package}/{tail}"),
+                    f"installed; write 'package://{package}/{tail}'"),
                     certain=False)
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
-                "repository: use package://PKG/... for files of another package"
-                f"{_rooted_by_mistake(named, base)}"))
+                f"repository: {_as_package_uri(written)}{_rooted_by_mistake(named, base)}"))
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
         looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
@@ -291,6 +290,24 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
                                       f"{', '.join(MESH_EXTENSIONS)}; not opened"))
     return path
+
+
+def _as_package_uri(written: str) -> str:
+    """Advice for a mesh named by an absolute path outside the repository: the package:// URI
+    of a path in a package's install space (``.../install/kortex_description/share/
+    kortex_description/arms/...``, a colcon workspace on the machine the robot was exported
+    from: Kinova's gen3_2f85.urdf), as loaders find it on any machine with the package; else
+    how to name another package's file."""
+    shared = _INSTALLED_SHARE.fullmatch(written)
+    if shared is None:
+        return "use package://PKG/... for files of another package"
+    package, tail = shared.groups()
+    return (f"it is in the install space of package '{package}' (share/{package}), there only "
+            f"where that workspace is built; write 'package://{package}/{tail}'")
+
+
+# a file of a package's install space: PREFIX/share/PACKAGE/FILE (colcon's, catkin's, ROS's)
+_INSTALLED_SHARE = re.compile(r".*/share/([^/]+)/([^/].*)")
 
 
 def _rooted_by_mistake(named: str, base: str) -> str:

@@ -269,7 +269,7 @@ def offer(where, message: str, description: str, edits, safe: bool = True, creat
     if edits is None:
         return where, message, None
     if isinstance(edits, Unfixable):
-        return where, f"{message} (no automatic fix: {edits.reason})", None
+        return where, message + f" (no automatic fix: {edits.reason})", None
     return where, message, Fix(description, tuple(edits), safe, tuple(creates))
 
 

@@ -54,8 +54,7 @@ def hedged(robot, controller: Controller, message: str):
     if answer:
         return message
     verdict = runs_of(robot, controller)
-    return Conditional(f"{_if_started(controller, verdict)}, {_after(controller, message)}",
-                       repeated=getattr(message, "repeated", ()))  # (an available list's)
+    return Conditional(f"{_if_started(controller, verdict)}, " + _after(controller, message))
 
 
 def _if_started(controller: Controller, verdict: Runs) -> str:
@@ -284,9 +283,8 @@ def controller_joint_not_actuated(robot):
                 message = Conditional(
                     f"if the robot's hardware interface offers only the joints of its "
                     f"transmissions (gazebo_ros_control does, and the URDF loads none: a RobotHW "
-                    f"of its own registers the joints it is written for): {message}",
-                    getattr(message, "severity", Severity.WARNING),
-                    repeated=getattr(message, "repeated", ()))
+                    f"of its own registers the joints it is written for): " + message,
+                    getattr(message, "severity", Severity.WARNING))
             if message is not None:
                 yield controller.file.at(ref.line), message
 
@@ -418,11 +416,12 @@ def _interface_fix(controller: Controller, offered: set, missing: list[str]) -> 
         use = "use " + " or ".join(_alternatives(controller, kinds))
     else:
         use = "change the controller"
+    a = "an" if wanted[:1] in "aeiou" else "a"  # (an effort command interface)
     if controller.ros == 2:
-        offer = f"a {wanted} command interface in its <ros2_control> joint"
+        offer = f"{a} {wanted} command interface in its <ros2_control> joint"
     else:
-        offer = (f"{wanted.capitalize()}JointInterface in its transmission, or a {wanted} command "
-                 "interface in <ros2_control>")
+        offer = (f"{wanted.capitalize()}JointInterface in its transmission, or {a} {wanted} "
+                 "command interface in <ros2_control>")
     if known and known.package == "diff_drive_controller":
         return f"diff_drive_controller turns its wheels by {wanted}: make the joint offer {wanted} ({offer})"
     return f"{use}, or make the joint offer {wanted} ({offer})"

@@ -610,7 +610,7 @@ def gazebo_plugin_library(robot):
                        f"hardware in <ros2_control> (ROS 2): use {ROS2_CONTROL} "
                        "(gz_ros2_control-system on Gazebo Sim)")
             yield plugin, (Conditional(f"if the robot runs under ROS 2 (it may under ROS 1 too: "
-                                       f"{'; '.join(ros1)}): {message}") if ros1 else message)
+                                       f"{'; '.join(ros1)}): " + message) if ros1 else message)
         elif library == ROS2_CONTROL and not ros2:
             yield plugin, (f"{library} (gazebo_ros2_control) reads the robot's <ros2_control>, and "
                            "it has none: add one, or use ROS 1's "

@@ -353,7 +353,9 @@ def _load_meshes(robot):
 def _problems(robot, kind: str):
     for link, holder, shape, outcome in _mesh_outcomes(robot):
         if getattr(outcome, "kind", None) == kind:
-            message = f"link '{link.get('name')}' <{holder.tag}>: {outcome}"
+            uri = shape.get("filename")
+            said = outcome.quoting(uri, _written_filename(robot, shape, uri))
+            message = f"link '{link.get('name')}' <{holder.tag}>: {said}"
             if kind == "package" and outcome.declared or \
                     kind == "missing" and outcome.kept_empty:
                 # a dependency the package.xml declares, or a file the repository leaves for
@@ -364,6 +366,19 @@ def _problems(robot, kind: str):
             repeated = getattr(outcome, "repeated", ())  # (a package's: where it was looked for)
             yield shape, (Said(message, repeated) if outcome.certain else
                           Conditional(message, repeated=repeated))
+
+
+def _written_filename(robot, shape, uri: str) -> str:
+    """The ``filename`` of mesh element ``shape`` as its file writes it (before xacro expands
+    ``$(find pkg)`` or ``${prefix}``), ``uri`` when not known or not read from a xacro."""
+    if not robot.from_xacro:
+        return uri
+    from urdftool.lint.fixes.tags import Unfixable, source_tag
+
+    found = source_tag(robot, shape)
+    if isinstance(found, Unfixable) or "filename" not in found[1].attributes:
+        return uri
+    return found[1].attributes["filename"][2]
 
 
 @rule("U407", "mesh-package-not-found", Severity.ERROR)

@@ -772,10 +772,10 @@ def inertia_far_from_geometry(robot):
             f"`urdftool inertia --link {_shell_word(_name(link))}` computes it")
         if held:
             message = Conditional("if the collision geometry is the body's shape, not a "
-                                  f"simplification smaller than it: {message}", Severity.INFO)
+                                  "simplification smaller than it: " + message, Severity.INFO)
         lumped = _negligible_where_fixed(robot, link, properties, expected)
         if lumped is not None:  # welded to a heavier body: its error is lost in the body's
-            yield _inertial_part(link, "inertia"), f"{message}; {lumped}", None, Severity.INFO
+            yield _inertial_part(link, "inertia"), message + "; " + lumped, None, Severity.INFO
             continue
         yield _inertial_part(link, "inertia"), message
 

@@ -136,7 +136,10 @@ U006 = declare("U006", "unresolved-package", Severity.WARNING, """
     A ``$(find pkg)`` names a package not installed here: the robot is not checked.
 
     urdftool looks at ``--package NAME=PATH``, ROS_PACKAGE_PATH, AMENT_PREFIX_PATH, and
-    package.xml files above the input and below the repository root; the message lists them.
+    package.xml (or rosbuild manifest.xml) files above the input and below the repository
+    root; the message lists them. When the file is not checked, the run exits 2 and says so
+    last: nothing in the file is known to be wrong, and a run that could not check it is no
+    pass.
 
     A package not installed is the environment's, not the robot's: a dependency the file's
     package.xml declares is there wherever the package is built, and another repository's
@@ -209,36 +212,37 @@ def required_argument(path: str, error, build):
                 "" if certain else f"; {', '.join(later)} known only at launch, left at the "
                 "robot's defaults" if later else ", its launch arguments at their defaults") + ")"
             if again.kind == "package":  # not installed here: the environment's, as U006 says
-                message = f"{again.message}; {told}, and xacro fails so here"
+                message = again.message + f"; {told}, and xacro fails so here"
                 declared = again.declared  # the workspace's: a note
                 return None, given, [U006.finding(
                     message if certain and not declared else Conditional(message, Severity.INFO),
-                    again.location, not_checked=certain or declared, repeated=again.repeated)]
-            message = f"{again.message}; {told}, and xacro fails so"
+                    again.location, not_checked=certain or declared)]
+            message = again.message + f"; {told}, and xacro fails so"
             if not certain:
                 message = Conditional(message, Severity.INFO)
             elif not again.certain:  # an included file the package's build may install
                 message = Conditional(message)
             return None, given, [rule.finding(message, again.location)]
-        message = f"{error.message}; checked as {made.named} builds it ({made.shown_args()}); {hint} of your choice"
+        message = error.message + (f"; checked as {made.named} builds it ({made.shown_args()}); "
+                                   f"{hint} of your choice")
         return robot, given, [rule.finding(Conditional(message, Severity.INFO), error.location)]
     made = [b for b in builds(path) if b.xacro]
     giving = [b for b in made if name in b.args]
     if giving:
         return None, {}, [rule.finding(Conditional(
-            f"{error.message}; {giving[0].named} gives it a value known only at launch, so the "
+            error.message + f"; {giving[0].named} gives it a value known only at launch, so the "
             f"robot is not checked; {hint}", Severity.INFO), error.location)]
     lacking = [b for b in made if b.complete]
     for b in lacking:
         if b.certain:
             return None, {}, [rule.finding(
-                f"{error.message}; {b.named_at()} builds this robot without it, and xacro fails "
+                error.message + f"; {b.named_at()} builds this robot without it, and xacro fails "
                 "there", error.location)]
     if lacking:
         b = lacking[0]
         when = b.condition or "when its launch argument chooses this file"
         return None, {}, [rule.finding(Conditional(
-            f"{error.message}; {b.named_at()} builds this robot without it {when}, and xacro "
+            error.message + f"; {b.named_at()} builds this robot without it {when}, and xacro "
             "fails then"), error.location)]
     declared = _declared(path, error)
     near = close_names(name, declared - {name})
@@ -247,10 +251,10 @@ def required_argument(path: str, error, build):
     unknown = f" (but {', '.join(unread[:3])} may)" if unread else ""
     if name in declared or not near:
         return None, {}, [rule.finding(Conditional(
-            f"{error.message}: {name} has no default and no launch file or launch test here "
+            error.message + f": {name} has no default and no launch file or launch test here "
             f"builds the robot{unknown}: a parameter whoever builds it gives; not checked: "
             f"{hint}", Severity.INFO), error.location)]
-    message = (f"{error.message}: {name} is declared nowhere and no launch file or launch test "
+    message = (error.message + f": {name} is declared nowhere and no launch file or launch test "
                f"here gives it{unknown}, but {', '.join(near)} is (<xacro:arg>): a misspelt name "
                f"fails unless the command line gives {name}; {hint}")
     return None, {}, [rule.finding(Conditional(message, Severity.INFO) if unread else
@@ -281,19 +285,19 @@ def failing_defaults(path: str, error, build):
             robot = build(known)
         except LoadError:
             continue
-        message = (f"{error.message}; xacro fails so with the robot's own argument defaults, "
+        message = (error.message + "; xacro fails so with the robot's own argument defaults, "
                    f"but {made.named} builds it with {made.shown_args()} and xacro succeeds: "
                    "checked as built there (--arg NAME=VALUE checks another build)")
         return robot, known, [U005.finding(Conditional(message), error.location)]
     if unknown and error.whatever_args:  # the values given at launch cannot change it
         made, later = unknown
-        message = (f"{error.message}; xacro fails so whatever the arguments: it checks a call's "
+        message = (error.message + "; xacro fails so whatever the arguments: it checks a call's "
                    f"parameter names before any value, and the call is under no condition, so "
                    f"{made.named}'s build fails too, whatever {', '.join(later)} it is given")
         return None, {}, [U005.finding(message, error.location)]
     if unknown:  # the build the repository runs depends on values given at launch
         made, later = unknown
-        message = (f"{error.message}; xacro fails so with the robot's own argument defaults, "
+        message = (error.message + "; xacro fails so with the robot's own argument defaults, "
                    f"and {made.named} builds it giving {', '.join(later)} values known only at "
                    "launch, so that build is not checked (--arg NAME=VALUE checks one)")
         return None, {}, [U005.finding(Conditional(message), error.location)]
@@ -353,8 +357,7 @@ def part_note(path: str, error, packages, limit: int) -> list | None:
                 "is lost (its macros are checked in the robots calling them)")
     else:
         return None
-    return [rule.finding(Conditional(f"{error.message}; {said}", severity), error.location,
-                         repeated=error.repeated)]
+    return [rule.finding(Conditional(error.message + f"; {said}", severity), error.location)]
 
 
 def _declared(path: str, error) -> set[str]:

@@ -333,14 +333,12 @@ def moveit_controller_unknown(robot):
             if remap is not None:  # served by a remap with some launch arguments only
                 message = Conditional(
                     f"unless {remap.written} remaps MoveIt's action to a ros_control "
-                    f"controller's ({_target(remap)}): {message}",
-                    repeated=getattr(message, "repeated", ()))
+                    f"controller's ({_target(remap)}): " + message)
             elif who == "unknown":
                 message = Conditional(
                     f"if MoveIt executes through the ros_control controllers the robot is checked "
                     f"with (a driver may serve '{entry.name}' with its own action server; no "
-                    f"launch file of the robot starts MoveIt with them alone): {message}",
-                    repeated=getattr(message, "repeated", ()))
+                    f"launch file of the robot starts MoveIt with them alone): " + message)
             else:
                 message = f"{where} starts MoveIt with this list and ros_control: " + message
             yield entry.file.at(entry.line), message
@@ -393,15 +391,13 @@ def moveit_controller_joints(robot):
             continue
         if remap is not None and not remap.certain:
             message = Conditional(f"when {remap.written} remaps MoveIt's action to "
-                                  f"{_target(remap)}: {message}",
-                                  repeated=getattr(message, "repeated", ()))
+                                  f"{_target(remap)}: " + message)
         elif remap is not None:
             message = f"{remap.written} remaps MoveIt's action to '{remap.target}': " + message
         elif who == "unknown":
             message = Conditional(f"if MoveIt executes through the ros_control controller of that "
                                   f"name the robot is checked with (a driver may serve "
-                                  f"'{entry.name}' itself): {message}",
-                                  repeated=getattr(message, "repeated", ()))
+                                  f"'{entry.name}' itself): " + message)
         yield entry.file.at(entry.joints_line), message
 
 

@@ -45,9 +45,9 @@ def controllers_started_together(robot):
                        "conflict): start one --inactive (ROS 2) or --stopped (ROS 1), or give "
                        "them different joints")
             if state == "certain":
-                yield controller.file.at(line), f"{where} starts both active together: {message}"
+                yield controller.file.at(line), f"{where} starts both active together: " + message
             else:
-                yield controller.file.at(line), Conditional(f"if {where}, active: {message}")
+                yield controller.file.at(line), Conditional(f"if {where}, active: " + message)
 
 
 @rule("U620", "launch-file-not-read", Severity.INFO)

@@ -36,15 +36,15 @@ def as_moveit_runs(check):
         for where, message, *fix in check(robot):
             # (a finding the rule itself lowers keeps its severity, said with the condition)
             kept = message.severity if isinstance(message, Conditional) else None
-            said = getattr(message, "repeated", ())  # (an available list: errors.available)
+            # (+, not an f-string: a Said message's repeated parts come along)
             if state == "conditional":  # the MoveIt configuration of another build: a note
-                message = Conditional(f"if MoveIt runs with the robot as checked ({why}): {message}",
-                                      Severity.INFO, said)
+                message = Conditional(f"if MoveIt runs with the robot as checked ({why}): "
+                                      + message, Severity.INFO)
             elif state == "certain":
                 message = f"{why}: " + message if kept is None else \
-                    Conditional(f"{why}: {message}", kept, said)
+                    Conditional(f"{why}: " + message, kept)
             elif state == "by default":  # MoveIt's for the defaults of the launch arguments
-                message = Conditional(f"{why}: {message}", kept or Severity.WARNING, said)
+                message = Conditional(f"{why}: " + message, kept or Severity.WARNING)
             yield (where, message, *fix)
     return judged
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 import functools
 import re
 
+from urdftool.description.files import MANIFESTS_SAID
 from urdftool.description.ros_version import ros_versions
 from urdftool.description.runtime import (STATE_PUBLISHERS, built_as_checked, built_otherwise,
                                          runtime)
@@ -46,13 +47,11 @@ def _as_read(robot, transmission, message, unread_note: bool = False):
     versions = ros_versions(robot)
     if versions.ros2_only:
         return Conditional(f"nothing reads this ROS 1 transmission (ros2_control reads only those "
-                           f"inside <ros2_control>; {versions.why(2)}), but {message}",
-                           Severity.INFO,
-                           repeated=getattr(message, "repeated", ())) if unread_note else None
+                           f"inside <ros2_control>; {versions.why(2)}), but " + message,
+                           Severity.INFO) if unread_note else None
     if 2 in versions.versions and 1 in versions.versions:
         return Conditional(f"if ROS 1 reads this transmission ({versions.why(1)}; ros2_control "
-                           f"ignores it: {versions.why(2)}): {message}",
-                           repeated=getattr(message, "repeated", ()))
+                           f"ignores it: {versions.why(2)}): " + message)
     return message
 
 
@@ -171,10 +170,9 @@ def unknown_hardware_interface(robot):
 def _if_ros(unsaid: bool, message: str):
     """U503's ``message``, as a warning naming the condition when nothing says ROS runs the
     robot (``unsaid``)."""
-    return Conditional(f"if ROS 1's ros_control loads it (nothing says ROS runs this robot: no "
-                       f"package.xml, launch file, controller file or ros_control plugin; Drake "
-                       f"reads a transmission without one): {message}",
-                       repeated=getattr(message, "repeated", ())) if unsaid else message
+    return Conditional("if ROS 1's ros_control loads it (nothing says ROS runs this robot: no "
+                       f"{MANIFESTS_SAID}, launch file, controller file or ros_control plugin; "
+                       "Drake reads a transmission without one): " + message) if unsaid else message
 
 
 @rule("U504", "transmission-no-actuator", Severity.ERROR)
@@ -202,7 +200,7 @@ def transmission_no_actuator(robot):
                 plugin = (block.findtext("hardware/plugin") or "").strip() or "?"
                 message = Conditional(
                     f"if hardware plugin '{plugin}' loads its transmissions (ros2_control's "
-                    f"parser accepts this one; configuring it with no actuator fails): {message}")
+                    "parser accepts this one; configuring it with no actuator fails): " + message)
             yield transmission, message
 
 
@@ -310,7 +308,7 @@ def unactuated_joint(robot):
                 message = Conditional(
                     f"if the robot is started by {', '.join(silent[:2])} (which start"
                     f"{'s' if len(silent) == 1 else ''} no joint_state_publisher; "
-                    f"{publishing[0]} does): {message}", Severity.INFO)
+                    f"{publishing[0]} does): " + message, Severity.INFO)
             from urdftool.lint.fixes import offer  # (only for a finding)
             yield offer(joint, message, f"actuate joint '{name}'", _actuation(robot, plugin, name),
                         safe=False)

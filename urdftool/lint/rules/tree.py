@@ -38,10 +38,9 @@ def _unless_given(robot, tag: str, name: str, message: str) -> str:
     args = clash.args
     listed = f"argument {args[0]} keeps its empty default" if len(args) == 1 else \
         f"arguments {', '.join(args[:-1])} and {args[-1]} keep their empty defaults"
-    return Conditional(f"{message}, only while the xacro {listed}: a build giving "
+    return Conditional(message + f", only while the xacro {listed}: a build giving "
                        f"{'it a value' if len(args) == 1 else 'each a value of its own'} "
-                       f"({' '.join(f'{arg}:=...' for arg in args)}) names them apart",
-                       repeated=getattr(message, "repeated", ()))
+                       f"({' '.join(f'{arg}:=...' for arg in args)}) names them apart")
 
 
 @rule("U101", "duplicate-link", Severity.ERROR)
