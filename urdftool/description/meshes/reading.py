@@ -221,8 +221,8 @@ def _why_no_triangles(data: bytes, suffix: str, path: Path, limits: MeshLimits) 
     """Why trimesh kept no triangles of a file, when it can be said: an STL's header that does
     not match its size, or faces whose vertices are not finite numbers (``nan``, ``inf``,
     ``1e400``: trimesh drops such faces as it processes the mesh; "holds no triangles" was all
-    U412 said of a file holding one). The file is read again, unprocessed: only on this way
-    out."""
+    the finding said of a file holding one). The file is read again, unprocessed: only on this
+    way out."""
     import numpy
     import trimesh
 
