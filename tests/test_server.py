@@ -1038,3 +1038,42 @@ def test_the_document_uses_only_pygls_public_names(monkeypatch):
     workspace.update_text_document(types.VersionedTextDocumentIdentifier(uri=uri, version=3),
                                    types.TextDocumentContentChangeWholeDocument(text="x\ry"))
     assert document.lines == ("x\r", "y") and document.version == 3
+
+
+def test_a_uri_no_file_can_have_names_no_document_and_never_breaks_the_others(offline_server,
+                                                                               tmp_path):
+    """Session 20 (attack20b): a document opened as ``file:///…/a%00b.urdf`` was the path
+    ``a\\x00b.urdf``; each later check read every open buffer, so every robot's check from then
+    on ended in "internal error: ValueError: embedded null byte". A path no file can have (a
+    NUL byte) is no path: the document is not the server's, as an ``http:`` one is not."""
+    from urdftool import server as module
+
+    server, _ = offline_server
+    for uri in (tmp_path.as_uri() + "/a%00b.urdf", tmp_path.as_uri() + "/%00/r.urdf"):
+        assert module.path_of_uri(uri) is None and list(server.paths_of([uri])) == [None]
+        server.protocol.workspace.put_text_document(types.TextDocumentItem(
+            uri=uri, language_id="xml", version=1, text=BROKEN))
+        server.opened(uri)
+    assert server.open == {}
+    robot = write_robot(tmp_path)
+    server.protocol.workspace.put_text_document(types.TextDocumentItem(
+        uri=robot.as_uri(), language_id="xml", version=1, text=BROKEN))
+    outcome = module.check_robot(str(robot), server._buffers(),
+                                 server.workspace.position_codec)
+    assert outcome.error is None, outcome.error
+
+
+def test_hover_and_code_actions_on_a_document_never_opened_answer_nothing(offline_server,
+                                                                         tmp_path):
+    """Session 20 (attack20b): a code action asked for a robot file the client never opened
+    was pygls's FileNotFoundError, an internal error with its traceback sent to the client
+    (hover answered nothing): one guard, the document of an open URI, serves both."""
+    server, _ = offline_server
+    uri = (tmp_path / "gone.urdf").as_uri()
+    span = types.Range(start=types.Position(500, 0), end=types.Position(501, 0))
+    diagnostic = types.Diagnostic(range=span, message="m", code="U204", source="urdftool")
+    assert server.code_actions(types.CodeActionParams(
+        text_document=types.TextDocumentIdentifier(uri=uri), range=span,
+        context=types.CodeActionContext(diagnostics=[diagnostic]))) is None
+    assert server.hover(types.HoverParams(text_document=types.TextDocumentIdentifier(uri=uri),
+                                          position=types.Position(0, 0))) is None

@@ -26,6 +26,7 @@ the largest float) and a direction.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Iterable
 
 # The largest magnitude a computation may square, a number from the command line or a file the
@@ -152,6 +153,15 @@ def symmetric_texts(matrix, digits: int = 4) -> list[list[str]]:
             line.append(number(value, digits, scale=scale or None))
         texts.append(line)
     return texts
+
+
+def computed(value: float, digits: int = 4) -> str:
+    """A value urdftool computed from finite ones, with :func:`number`; one past the float range
+    (1e308 x 2 is ``inf``) is said as such, not as an ``inf`` the file never wrote."""
+    if math.isinf(value):
+        return (f"past -{sys.float_info.max:.2g}, the lowest float" if value < 0 else
+                f"past {sys.float_info.max:.2g}, the largest float")
+    return number(value, digits)
 
 
 def numbers(values: Iterable[float], digits: int = 4, separator: str = " ",

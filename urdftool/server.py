@@ -228,8 +228,11 @@ def uri_of_path(path: str) -> str:
 def path_of_uri(uri: str) -> str | None:
     """The path a ``file:`` URI names (pygls's ``to_fs_path``), the name's own bytes where its
     percent-escapes are not UTF-8 (pygls made each such byte U+FFFD, a file that is not
-    there): :func:`uri_of_path` read back."""
+    there): :func:`uri_of_path` read back. A URI no file can have (a NUL byte, ``%00``) names no
+    path: every check reads every open buffer, so one such document broke them all."""
     path = to_fs_path(uri)
+    if path and "\x00" in path:
+        return None
     if path and "\ufffd" in path and "%" in uri:
         from urllib.parse import unquote_to_bytes, urlparse
 
@@ -709,10 +712,15 @@ class UrdftoolServer(LanguageServer):
 
     # -- hover and code actions
 
+    def document(self, uri: str) -> TextDocument | None:
+        """The document open at ``uri``, None when the client has not opened it (pygls would
+        read it from disk, or fail to: its FileNotFoundError was the client's internal error)."""
+        return self.workspace.get_text_document(uri) if self.path_of(uri) in self.open else None
+
     def hover(self, params: types.HoverParams) -> types.Hover | None:
-        if self.path_of(params.text_document.uri) not in self.open:
-            return None  # not open (pygls would read it from disk, or fail to)
-        document = self.workspace.get_text_document(params.text_document.uri)
+        document = self.document(params.text_document.uri)
+        if document is None:
+            return None
         word = document.word_at_position(params.position, *_WORD)
         line = document.lines[params.position.line] if params.position.line < len(
             document.lines) else ""
@@ -724,9 +732,10 @@ class UrdftoolServer(LanguageServer):
 
     def code_actions(self, params: types.CodeActionParams) -> list[types.CodeAction] | None:
         path = self.path_of(params.text_document.uri)
-        if not path or kind_of(path) != "robot":
+        document = self.document(params.text_document.uri)
+        if document is None or kind_of(path) != "robot":
             return None
-        lines = list(self.workspace.get_text_document(params.text_document.uri).lines)
+        lines = list(document.lines)
         actions = []
         for diagnostic in params.context.diagnostics:
             if diagnostic.source != SOURCE or not isinstance(diagnostic.code, str):

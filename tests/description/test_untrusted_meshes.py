@@ -334,3 +334,24 @@ def test_off_ngon_counts_its_corners(tmp_path):
     (tmp_path / "ngon.off").write_bytes(b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3000000 "
                                         + b"0 1 2 " * 1_000_000 + b"\n")
     assert triangle_count(tmp_path / "ngon.off") == 2_999_998
+
+
+@pytest.mark.parametrize("name, data", [
+    ("nan.obj", b"v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+    ("inf.obj", b"v 0 0 0\nv inf 0 0\nv 0 -1e400 0\nf 1 2 3\n"),
+    ("nan.stl", b"solid s\nfacet normal 0 0 1\nouter loop\nvertex nan 0 0\nvertex 1 0 0\n"
+                b"vertex 0 1 0\nendloop\nendfacet\nendsolid s\n"),
+])
+def test_a_mesh_whose_vertices_are_not_finite_says_why_it_holds_no_triangles(tmp_path, name,
+                                                                              data):
+    """Session 20 (attack20b; attack20's M4): trimesh drops the faces of vertices that are not
+    finite numbers, and U412 said "holds no triangles" of a file holding one, silent on why."""
+    from urdftool.description.meshes import MeshProblem, load_mesh
+    from urdftool.description.load import load
+
+    (tmp_path / name).write_bytes(data)
+    robot = load(str(_robot(tmp_path, name)))
+    with pytest.raises(MeshProblem) as problem:
+        load_mesh(robot, name)
+    assert "holds no triangles" in str(problem.value)
+    assert "1 triangle uses vertices that are not finite numbers" in str(problem.value)

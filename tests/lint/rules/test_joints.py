@@ -192,3 +192,14 @@ def test_limits_inverted_are_swapped_only_when_both_are_finite(tmp_path, lower, 
     text = MIMIC.format(driver_type="revolute", lower=lower, upper=upper, mimic="")
     found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U204",))
     assert bool(found) == swapped, [f.message for f in findings]
+
+
+def test_a_mimic_driven_past_the_largest_float_says_so_not_inf(tmp_path):
+    """Session 20 (attack20b; attack20's R1): multiplier and offset 1e308 drive the mimic joint
+    to 1.8e308, past what a float holds: U216 said "goes over [1e+308, inf]", an ``inf`` the
+    file never wrote. A computed end past the float range is said as such."""
+    text = MIMIC.format(driver_type="revolute", lower=0, upper=0.88,
+                        mimic='multiplier="1e308" offset="1e308"')
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U216",))
+    [message] = [f.message for f in findings]
+    assert "inf" not in message.replace("infinite", "") and "largest float" in message, message

@@ -217,6 +217,32 @@ def _binary_stl_mismatch(data: bytes) -> str:
             f"file has {len(data)} bytes")
 
 
+def _why_no_triangles(data: bytes, suffix: str, path: Path, limits: MeshLimits) -> str:
+    """Why trimesh kept no triangles of a file, when it can be said: an STL's header that does
+    not match its size, or faces whose vertices are not finite numbers (``nan``, ``inf``,
+    ``1e400``: trimesh drops such faces as it processes the mesh; "holds no triangles" was all
+    the finding said of a file holding one). The file is read again, unprocessed: only on this
+    way out."""
+    import numpy
+    import trimesh
+
+    mismatch = _binary_stl_mismatch(data) if suffix == ".stl" else ""
+    if mismatch:
+        return mismatch
+    try:
+        raw = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=False,
+                           resolver=_geometry_resolver(path, limits))
+        faces, vertices = numpy.asarray(raw.faces), numpy.asarray(raw.vertices, dtype=float)
+        bad = int((~numpy.isfinite(vertices[faces]).all(axis=(1, 2))).sum()) if len(faces) \
+            else 0
+    except Exception:  # the reason is a courtesy: the file holds no triangles either way
+        return ""
+    if not bad:
+        return ""
+    return (f": its {bad} triangle{'s use' if bad > 1 else ' uses'} vertices that are not "
+            f"finite numbers (nan, inf or past the float range), which trimesh drops")
+
+
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     import logging
 
@@ -244,7 +270,7 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
         raise MeshProblem("corrupt", f"mesh '{uri}' does not load: {described(error)}") from None
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
         raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles"
-                                     f"{_binary_stl_mismatch(data) if suffix == '.stl' else ''}")
+                                     f"{_why_no_triangles(data, suffix, path, limits)}")
     refuse_too_many(uri, len(loaded.faces), limits)
     unit = collada_unit(data) if suffix == ".dae" else 1.0
     if unit != 1.0:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from urdftool.lint.catalogue import Conditional, Severity, rule
-from urdftool.numbers import length, number, unit
+from urdftool.numbers import computed, length, number, unit
 from urdftool.errors import available
 from urdftool.description.urdf import (AXIS, JOINT_NUMBER_PLACES, JOINT_TYPES, LIMITED, MOVING,
                                        NUMBERS)
@@ -559,7 +559,7 @@ def mimic_outside_limits(robot):
         if ends[0] < own[0] - slack or ends[1] > own[1] + slack:
             yield mimic, (f"joint '{_name(joint)}' mimics '{target}' ({multiplier[0]:g} x "
                           f"[{driven[0]:g}, {driven[1]:g}] + {offset[0]:g}), so it goes over "
-                          f"[{number(ends[0])}, {number(ends[1])}], outside its own limits "
+                          f"[{computed(ends[0])}, {computed(ends[1])}], outside its own limits "
                           f"[{own[0]:g}, {own[1]:g}]; fix the multiplier's sign or the limits")
 
 
