@@ -384,3 +384,16 @@ def test_a_scalar_ending_with_a_raw_line_break_is_quoted_as_written(tmp_path):
     assert found == [("robot.urdf", 2, "U023")]
     assert '<inertia ixz="-0.5\\n">' in findings[0].message  # (a line break, CR LF or LF)
     assert [edit.text for edit in findings[0].fix.edits] == ["-0.5"]
+
+
+def test_the_number_gate_finds_each_spelling_its_needles_name():
+    # U023's gate looks for a two-byte needle only where its rarer byte is: each spelling,
+    # alone or beside texts holding that byte elsewhere, is found as a plain search finds it
+    from urdftool.lint.rules.vocabulary import _suspect
+
+    needles = (b"\t", b"\r", b"&#", b' "', b" '", b'\n"', b"\n'")
+    plain = b'<robot name="r"><link name="a"/></robot>\n'
+    texts = [plain, plain + b"<!-- & ' -->", plain.replace(b'"', b"'"), b"&amp;'x'\n"]
+    texts += [text[:9] + needle + text[9:] for text in list(texts) for needle in needles]
+    for text in texts:
+        assert _suspect(text) == any(needle in text for needle in needles), text
