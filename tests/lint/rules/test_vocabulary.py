@@ -429,3 +429,16 @@ def test_a_place_is_named_once_though_urdfdom_reads_the_element_in_two_kinds_of_
       <geometry><box size="1 1 1"/></geometry><color rgba="1 0 0 1"/></visual></link></robot>""")
     assert [c for _, _, c in found] == ["U022"]
     assert findings[0].message.endswith("urdfdom reads it only in <material>"), findings[0].message
+
+
+def test_the_number_gate_finds_each_spelling_its_needles_name():
+    # U023's gate looks for a two-byte needle only where its rarer byte is: each spelling,
+    # alone or beside texts holding that byte elsewhere, is found as a plain search finds it
+    from urdftool.lint.rules.vocabulary import _suspect
+
+    needles = (b"\t", b"\r", b"&#", b' "', b" '", b'\n"', b"\n'")
+    plain = b'<robot name="r"><link name="a"/></robot>\n'
+    texts = [plain, plain + b"<!-- & ' -->", plain.replace(b'"', b"'"), b"&amp;'x'\n"]
+    texts += [text[:9] + needle + text[9:] for text in list(texts) for needle in needles]
+    for text in texts:
+        assert _suspect(text) == any(needle in text for needle in needles), text
