@@ -13,9 +13,10 @@ For each loader: whether it loaded, or its error mapped back to the line of the 
 wrote; total mass; degrees of freedom; floating or fixed base; the URDF links it dropped or
 fused; frame positions at the zero configuration and a few others; the inertia it holds. The
 loaders **disagree** when the positions of a frame two of them keep differ by more than
-:data:`TOLERANCE`; masses and degrees of freedom are reported side by side (they differ by
-design: Drake floats a robot that MuJoCo welds, PyBullet gives massless links 1 kg), each
-difference said in words.
+:data:`TOLERANCE`, or when a loader's total mass is not what its own reading of a URDF makes of
+the masses declared (:mod:`.masses`: PyBullet gives a link without ``<inertial>`` 1 kg, MuJoCo
+fuses the links welded to the world into it); degrees of freedom and bases are reported side by
+side (Drake floats a robot that MuJoCo welds), each difference said in words.
 """
 
 from __future__ import annotations
@@ -629,7 +630,8 @@ def _unplaced(loaded: list, robot) -> dict:
 
 def _compare(report: Crosscheck, robot) -> None:
     """Fill ``disagreements`` (frames two loaders keep, apart by more than TOLERANCE) and
-    ``differences`` (mass, degrees of freedom, base, dropped links: said, not failed)."""
+    ``differences`` (masses accounted for, degrees of freedom, base, dropped links: said, not
+    failed); a total mass no reading accounts for is a disagreement (:mod:`.masses`)."""
     loaded = [r for r in report.loaders if r.loaded and r.frames]
     unplaced = _unplaced(loaded, robot)
     for result in loaded:
@@ -658,8 +660,10 @@ def _compare(report: Crosscheck, robot) -> None:
                     report.disagreements.append(
                         f"{first.name} and {second.name} place link '{where}' {number(worst, 3)} m "
                         f"apart at {at}")
-    for label, key in (("total mass [kg]", "mass"), ("degrees of freedom", "dof"),
-                       ("floating base", "floating_base")):
+    from urdftool.crosscheck.masses import compare as masses
+
+    masses(report, robot)
+    for label, key in (("degrees of freedom", "dof"), ("floating base", "floating_base")):
         values = {r.name: getattr(r, key) for r in report.loaders if r.loaded}
         shown = {v if not isinstance(v, float) else round(v, 9) for v in values.values()}
         if len(shown) > 1:
