@@ -201,7 +201,8 @@ class PairChecker:
                 continue
             mover = moving[pb[row]]
             mover.setTransform(fcl.Transform(rotation[n], translation[n]))
-            gap = fcl.distance(fixed[pa[row]], mover, self._distance_request, fcl.DistanceResult())
+            gap = _gap(fcl.distance(fixed[pa[row]], mover, self._distance_request,
+                                    fcl.DistanceResult()))
             if gap < distance[pair]:
                 distance[pair] = gap
 
@@ -233,8 +234,8 @@ class PairChecker:
                 one, two = self._place(part_poses, a), self._place(part_poses, b)
             result = fcl.CollisionResult()
             if not fcl.collide(one, two, request, result):
-                nearest = min(nearest, fcl.distance(one, two, self._distance_request,
-                                                    fcl.DistanceResult()))
+                nearest = min(nearest, _gap(fcl.distance(one, two, self._distance_request,
+                                                         fcl.DistanceResult())))
                 continue
             hit = True
             if not contacts:
@@ -336,6 +337,13 @@ class PairChecker:
         pose = part_poses[part]
         self.moving[part].setTransform(fcl.Transform(pose[:3, :3], pose[:3, 3]))
         return self.moving[part]
+
+
+def _gap(distance: float) -> float:
+    """FCL's distance of two shapes its collision test found apart [m]: FCL answers -1, its
+    "in collision", for shapes that only touch (boxes sharing a face: the collision test says
+    apart, the distance's GJK overlapping), which was shown as -1000 mm apart; they are 0 apart."""
+    return max(0.0, distance)
 
 
 # a closed mesh whose volume is within this fraction of its convex hull's is convex: the hulls'
