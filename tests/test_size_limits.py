@@ -248,6 +248,23 @@ def test_the_triangles_the_description_says_are_those_of_the_scene(tmp_path):
             2 * (12 + 1280 + 128 + 320)
 
 
+def test_a_mesh_the_scene_leaves_out_adds_no_triangles_to_the_description(run_cli, tmp_path):
+    """A Git LFS pointer in a mesh's place (the Ruiyan hand of the real sweep, its meshes never
+    fetched): its text read as a binary STL's header counted 1.6 billion triangles, and render
+    refused 17.9 G triangles; the scene leaves the mesh out, as the refusal now does."""
+    path = tmp_path / "r.urdf"
+    (tmp_path / "part.stl").write_bytes(
+        b"version https://git-lfs.github.com/spec/v1\noid sha256:" + b"6" * 64 +
+        b"\nsize 1234567\n")
+    path.write_text(chain(2, body=BODY.replace(
+        '<visual><geometry><box size="0.01 0.01 0.01"/>',
+        '<visual><geometry><mesh filename="part.stl"/>')))
+    out = tmp_path / "r.svg"
+    result = run_cli("render", path, "-o", out, *IN_PROCESS)
+    assert result.exit_code in (0, 1) and "over the limit" not in result.output, result.output
+    assert "Git LFS pointer" in result.output
+
+
 def test_dynamics_refuses_matrices_past_their_limit_and_the_option_raises_it(run_cli, tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text(chain(4))

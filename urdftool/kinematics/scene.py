@@ -336,8 +336,9 @@ def described_triangles(robot, collision: bool = False) -> int:
     """The triangles of the robot's visual (or collision) geometry as its description says,
     before any scene is built: each primitive as trimesh makes it, each mesh as its file
     counts them (read without building the mesh; a mesh that cannot be drawn or counted so
-    adds none, :meth:`SceneModel.pose` counts it once built)."""
-    from urdftool.description.meshes import resolve, triangle_count
+    adds none, :meth:`SceneModel.pose` counts it once built). A mesh the scene leaves out adds
+    none either: a Git LFS pointer (its text read as a binary STL's header is a billion
+    triangles: the Ruiyan hand's 17.9 G refused), one over the per-mesh limits."""
     from urdftool.description.xml import first_child
 
     counts: dict = {}
@@ -353,15 +354,32 @@ def described_triangles(robot, collision: bool = False) -> int:
                 elif child.tag == "mesh":
                     uri = child.get("filename") or ""
                     if uri not in counts:
-                        try:
-                            counts[uri] = triangle_count(resolve(robot, uri)) or 0
-                        except MeshProblem:
-                            counts[uri] = 0
+                        counts[uri] = _mesh_triangles(robot, uri)
                     total += counts[uri]
                 else:
                     continue
                 break  # yourdfpy draws a geometry's first shape
     return total
+
+
+def _mesh_triangles(robot, uri: str) -> int:
+    """The triangles of the mesh at ``uri`` as its file counts them; 0 for one that
+    :func:`~urdftool.description.meshes.load_mesh` refuses before reading it (its limits,
+    checked in the bytes: a Git LFS pointer, too many bytes or triangles), which the scene
+    leaves out, or that cannot be counted so."""
+    from urdftool.description.files import read_regular
+    from urdftool.description.meshes import resolve, triangle_count
+    from urdftool.description.meshes.reading import check_size
+
+    limits = robot.mesh_limits
+    try:
+        path = resolve(robot, uri)
+        data = read_regular(path, limits.max_bytes + 1, as_="mesh")
+        check_size(path, uri, limits, data, count=False)
+        count = triangle_count(path, data) or 0
+    except (MeshProblem, OSError):
+        return 0
+    return count if count <= limits.max_triangles else 0
 
 
 def scene_model(robot, collision: bool = False,
