@@ -241,6 +241,28 @@ def test_pybullet_says_which_mesh_it_cannot_find_and_what_to_do(tmp_path):
                                  "there; 'urdftool check' says where each mesh was looked for")
 
 
+def test_pybullet_says_a_package_folder_named_otherwise_is_why_it_finds_no_mesh(tmp_path):
+    """The robot in a package whose folder is not named as the package (a clone named for its
+    repository: LimX's TRON1, package robot_description in 'robot-description'): urdftool
+    finds the mesh through package.xml, PyBullet only as a folder of the package's name above
+    the file, and it said the mesh "is not there"."""
+    _installed("pybullet")
+    package = _package(tmp_path)
+    package = package.rename(tmp_path / "my-arm-repository")
+    (package / "urdf").mkdir()
+    path = package / "urdf" / "arm.urdf"
+    mesh = '<geometry><mesh filename="package://my_arm/meshes/box.stl"/></geometry>'
+    path.write_text(ARM.replace('<link name="tip">', f'<link name="tip"><visual>{mesh}</visual>'
+                                f'<collision>{mesh}</collision>'))
+    [result] = crosscheck(str(path), ["pybullet"]).loaders
+    assert not result.loaded
+    assert result.error.endswith(
+        "it cannot find mesh 'my_arm/meshes/box.stl', which is there: PyBullet looks for "
+        "package://my_arm/... as a folder named 'my_arm' above the file it reads, and package "
+        f"'my_arm' is the folder 'my-arm-repository' ({package}), found by its package.xml; a "
+        "workspace whose folder is named 'my_arm' loads"), result.error
+
+
 def test_mujoco_says_it_resolves_no_package_uri_and_what_to_do(tmp_path):
     """MuJoCo failed every ROS robot with package:// meshes (G1, H1, iCub, Pepper of the
     sweep) with "Error opening file 'package:/...'", nothing more."""

@@ -533,22 +533,34 @@ def _unfound_advice(robot, names: list[str]) -> str:
     not there ('urdftool check' says where it was looked for)."""
     from urdftool.description.packages import package_uri_parts
 
+    from urdftool.description.files import kind_of
+
     names = list(dict.fromkeys(names))
-    unknown, missing = [], []
+    unknown, missing, elsewhere = [], [], []
     for name in names:
         uri = next((e.get("filename") for e in robot.root.iter("mesh")
                     if _names(robot, e.get("filename") or "", name)), None)
         package = package_uri_parts(uri)[0] if uri and uri.startswith("package://") else None
         try:
-            known = package is None or bool(robot.resolver.find(package))
+            folder = robot.resolver.find(package) if package is not None else None
+            known = True
         except Exception:  # noqa: BLE001 - an unknown package
-            known = False
+            known, folder = False, None
         if not known:
             unknown.append(package)
+        elif folder is not None and Path(folder).name != package and \
+                kind_of(Path(folder, package_uri_parts(uri)[1])) == "file":
+            elsewhere.append((package, Path(folder)))
         else:
             missing.append(uri or name)
     said = f"it cannot find mesh '{names[0]}'" + (f" and {len(names) - 1} more" if
                                                  len(names) > 1 else "")
+    if elsewhere and not unknown:
+        package, folder = elsewhere[0]
+        return (f"{said}, which is there: PyBullet looks for package://{package}/... as a "
+                f"folder named '{package}' above the file it reads, and package '{package}' is "
+                f"the folder '{folder.name}' ({folder}), found by its package.xml; a "
+                f"workspace whose folder is named '{package}' loads")
     if unknown:
         first = list(dict.fromkeys(unknown))[0]
         return (f"{said}; package '{first}' is not found by urdftool either: give it with "
