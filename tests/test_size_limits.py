@@ -202,6 +202,69 @@ def test_a_picture_past_the_triangle_limit_is_refused_and_the_option_raises_it(
         out.unlink()
 
 
+@pytest.mark.parametrize("command", [["render", "-o", "{out}"], ["collisions", "--render", "{out}"],
+                                     ["diff", "{robot}", "--render", "{out}"]],
+                         ids=["render", "collisions", "diff"])
+def test_a_picture_past_the_triangle_limit_is_refused_before_the_scene_is_built(
+        run_cli, tmp_path, monkeypatch, command):
+    """The limit is judged from what the description says: 20,000 spheres (25 M triangles)
+    were built by yourdfpy and trimesh first, past the 60 s budget, to be refused after."""
+    from urdftool.kinematics import scene
+
+    def built(*args):
+        raise AssertionError("the scene was built before the limit was judged")
+
+    monkeypatch.setattr(scene, "SceneModel", built)
+    path = tmp_path / "r.urdf"
+    path.write_text(chain(3, body=BODY + '<visual><geometry><sphere radius="0.1"/></geometry>'
+                                       '</visual><collision><geometry><cylinder radius="0.1" '
+                                       'length="0.2"/></geometry></collision>'))
+    out = tmp_path / "r.svg"
+    words = [word.format(out=out, robot=path) for word in command]
+    result = run_cli(words[0], path, *words[1:], "--max-scene-triangles", "20", *IN_PROCESS)
+    assert result.exit_code == 2, result.output
+    assert "over the limit of 20" in result.stderr and not out.exists()
+
+
+def test_the_triangles_the_description_says_are_those_of_the_scene(tmp_path):
+    """:func:`scene.described_triangles` (the refusal before any work) counts each primitive
+    as trimesh makes it and each mesh as its file holds it: what the built scene holds."""
+    import trimesh
+
+    from urdftool.description.load import load
+    from urdftool.kinematics import scene
+
+    trimesh.creation.icosphere(subdivisions=2).export(tmp_path / "ball.stl")
+    shapes = ['<box size="0.1 0.2 0.3"/>', '<sphere radius="0.1"/>',
+              '<cylinder radius="0.1" length="0.2"/>', '<mesh filename="ball.stl"/>']
+    body = "".join(f"<{kind}><geometry>{shape}</geometry></{kind}>"
+                   for shape in shapes for kind in ("visual", "collision"))
+    path = tmp_path / "r.urdf"
+    path.write_text(chain(2, body=body))
+    robot = load(path)
+    for collision in (False, True):
+        built = scene.scene_model(robot, collision).pose({}, None)
+        assert scene.described_triangles(robot, collision) == len(built.triangles) == \
+            2 * (12 + 1280 + 128 + 320)
+
+
+def test_a_mesh_the_scene_leaves_out_adds_no_triangles_to_the_description(run_cli, tmp_path):
+    """A Git LFS pointer in a mesh's place (the Ruiyan hand of the real sweep, its meshes never
+    fetched): its text read as a binary STL's header counted 1.6 billion triangles, and render
+    refused 17.9 G triangles; the scene leaves the mesh out, as the refusal now does."""
+    path = tmp_path / "r.urdf"
+    (tmp_path / "part.stl").write_bytes(
+        b"version https://git-lfs.github.com/spec/v1\noid sha256:" + b"6" * 64 +
+        b"\nsize 1234567\n")
+    path.write_text(chain(2, body=BODY.replace(
+        '<visual><geometry><box size="0.01 0.01 0.01"/>',
+        '<visual><geometry><mesh filename="part.stl"/>')))
+    out = tmp_path / "r.svg"
+    result = run_cli("render", path, "-o", out, *IN_PROCESS)
+    assert result.exit_code in (0, 1) and "over the limit" not in result.output, result.output
+    assert "Git LFS pointer" in result.output
+
+
 def test_dynamics_refuses_matrices_past_their_limit_and_the_option_raises_it(run_cli, tmp_path):
     path = tmp_path / "r.urdf"
     path.write_text(chain(4))

@@ -647,3 +647,30 @@ def test_a_tally_without_distances_counts_the_same_collisions():
     assert full.collisions.sum() > 0 and np.isfinite(full.min_distance).any()
     assert np.array_equal(full.collisions, counted.collisions)
     assert np.isinf(counted.min_distance[counted.collisions == 0]).all()
+
+
+def test_check_tells_touching_meshes_at_the_srdf_poses_without_building_their_hulls(
+        tmp_path, monkeypatch):
+    """Parts exported to share a face, in contact at an SRDF pose: their contact is told by the
+    least overlap along the axes and the centres' line from the meshes' vertices (at most
+    0.5 mm here: touching, not reported), without qhull and a processed trimesh of each mesh
+    for its hull; a contact deeper than that still gets its hulls' depth. (scipy itself is
+    imported anyway: trimesh, which reads the meshes, imports scipy.spatial.)"""
+    import trimesh
+    from lxml import etree
+
+    from urdftool.collision import pairs
+
+    robot = robot_of(tmp_path, _mesh_boxes(tmp_path, trimesh.creation.box((0.1, 0.1, 0.1))))
+    built = []
+    original = pairs._convex
+    monkeypatch.setattr(pairs, "_convex", lambda *mesh: built.append(1) or original(*mesh))
+
+    def overlaps(slider: str):
+        state = ('<group name="g"><joint name="slider"/></group><group_state name="s" '
+                 f'group="g"><joint name="slider" value="{slider}"/></group_state>')
+        found = srdf.overlaps(robot, etree.fromstring(f'<robot name="boxes">{state}</robot>'))
+        return [(pair, round(overlap.depth, 6)) for pair, overlap in found.items()]
+
+    assert overlaps("0.0995") == [] and built == []
+    assert overlaps("0.05") == [(("fixed_box", "sliding_box"), 0.05)] and built

@@ -57,6 +57,36 @@ def test_loaders_agree_on_a_small_arm(tmp_path):
     assert mujoco.frames[0]["tip"] != mujoco.frames[1]["tip"]
 
 
+def test_a_mass_a_loaders_reading_accounts_for_is_said_how_and_one_it_does_not_disagrees(
+        tmp_path):
+    """Each loader's total mass against what its own importer makes of the URDF's (read in
+    their sources: crosscheck.masses): PyBullet's 1 kg for a link without <inertial>, MuJoCo's
+    links welded to the world fused into it and its mass from the geoms of a link without
+    <inertial> are said, each with its kilograms; a tab inside an inertial's origin, over which
+    Pinocchio drops the inertial (1.5 kg of 2.5), was explained "by design" and the loaders
+    "agreed": it is a disagreement."""
+    _installed("pinocchio", "mujoco", "pybullet")
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM.replace(
+        '<link name="tip"><inertial><mass value="0.5"/><inertia ixx="0.01" iyy="0.01" '
+        'izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>',
+        '<link name="tip"><collision><geometry><box size="0.2 0.2 0.2"/></geometry>'
+        '</collision></link>'))
+    report = crosscheck(str(path), ["pinocchio", "mujoco", "pybullet"])
+    assert not report.disagreements and report.exit_code == 0, report.disagreements
+    assert report.differences[:3] == [
+        "total mass [kg]: pinocchio 2, mujoco 9, pybullet 3 (the URDF declares 2)",
+        "mujoco holds 9 kg: without the 1 kg of base (welded to the world, fused into it); "
+        "8 kg computed from the geoms of tip (no <inertial>)",
+        "pybullet holds 3 kg: 1 kg for each link without <inertial>: tip"]
+    path.write_text(ARM.replace('<origin xyz="0 0 0.05"/>', '<origin xyz="0 0\t0.05"/>'))
+    report = crosscheck(str(path), ["pinocchio", "mujoco", "pybullet"])
+    assert report.disagreements == [
+        "pinocchio holds 1.5 kg of mass, where its reading of the URDF accounts for 2.5 kg: it "
+        "read an <inertial> otherwise ('urdftool check' says which may be misread)"]
+    assert report.exit_code == 1
+
+
 def test_a_file_named_with_bytes_that_are_not_utf8_is_loaded_by_every_loader(tmp_path):
     """The loaders take a file name as UTF-8 text: a robot named ``arm\\xff.urdf`` (U+DCFF to
     Python) failed in each with "UnicodeEncodeError", a file each would read; it is read from a
@@ -211,6 +241,28 @@ def test_pybullet_says_which_mesh_it_cannot_find_and_what_to_do(tmp_path):
                                  "there; 'urdftool check' says where each mesh was looked for")
 
 
+def test_pybullet_says_a_package_folder_named_otherwise_is_why_it_finds_no_mesh(tmp_path):
+    """The robot in a package whose folder is not named as the package (a clone named for its
+    repository: LimX's TRON1, package robot_description in 'robot-description'): urdftool
+    finds the mesh through package.xml, PyBullet only as a folder of the package's name above
+    the file, and it said the mesh "is not there"."""
+    _installed("pybullet")
+    package = _package(tmp_path)
+    package = package.rename(tmp_path / "my-arm-repository")
+    (package / "urdf").mkdir()
+    path = package / "urdf" / "arm.urdf"
+    mesh = '<geometry><mesh filename="package://my_arm/meshes/box.stl"/></geometry>'
+    path.write_text(ARM.replace('<link name="tip">', f'<link name="tip"><visual>{mesh}</visual>'
+                                f'<collision>{mesh}</collision>'))
+    [result] = crosscheck(str(path), ["pybullet"]).loaders
+    assert not result.loaded
+    assert result.error.endswith(
+        "it cannot find mesh 'my_arm/meshes/box.stl', which is there: PyBullet looks for "
+        "package://my_arm/... as a folder named 'my_arm' above the file it reads, and package "
+        f"'my_arm' is the folder 'my-arm-repository' ({package}), found by its package.xml; a "
+        "workspace whose folder is named 'my_arm' loads"), result.error
+
+
 def test_mujoco_says_it_resolves_no_package_uri_and_what_to_do(tmp_path):
     """MuJoCo failed every ROS robot with package:// meshes (G1, H1, iCub, Pepper of the
     sweep) with "Error opening file 'package:/...'", nothing more."""
@@ -289,6 +341,8 @@ def test_a_robots_own_mujoco_element_is_honoured_and_said(tmp_path):
     [result] = report.loaders
     assert result.loaded, result.error
     assert report.differences == [
+        "total mass [kg]: mujoco 1.5 (the URDF declares 2.5)",
+        "mujoco holds 1.5 kg: without the 1 kg of base (welded to the world, fused into it)",
         "mujoco has no link world, base (fused, lumped or dropped)",
         "mujoco read the robot's <mujoco><compiler>: balanceinertia=\"true\" (principal moments "
         "that break the triangle inequality raised)",

@@ -173,3 +173,36 @@ def test_a_long_chain_is_posed_without_walking_each_links_path_from_the_base(tmp
     for name, pose in again.frames.items():
         np.testing.assert_allclose(pose, expected[name], atol=1e-12)
     np.testing.assert_allclose(again.triangles, walked.triangles, atol=1e-12)
+
+
+@pytest.mark.parametrize("collision", [False, True])
+def test_a_scene_of_many_primitives_is_built_without_hashing_the_graph_per_link(
+        tmp_path, monkeypatch, collision):
+    """yourdfpy's scene asks trimesh's ``graph.nodes`` once per link, which trimesh computes
+    again from a hash of the whole graph after each update: 4,000 links of a box and a sphere
+    took 44 s where 1,000 took 2 (quadratic). The scene is built with a hash or two, is the
+    one yourdfpy built (nodes, geometry per link, one concatenated per link for collision),
+    and a geometry named as another, or as a link, gets a name of its own."""
+    from trimesh.scene.transforms import SceneGraph
+
+    shapes = ('<{kind} name="shape"><geometry><box size="0.01 0.02 0.03"/></geometry></{kind}>'
+              '<{kind} name="l3"><origin xyz="0 0 0.1"/><geometry><sphere radius="0.01"/>'
+              '</geometry></{kind}>').format(kind="collision" if collision else "visual")
+    links = "".join(f'<link name="l{i}">{shapes}</link>' for i in range(200))
+    joints = "".join(f'<joint name="j{i}" type="fixed"><parent link="l0"/>'
+                     f'<child link="l{i}"/><origin xyz="0.01 0 0"/></joint>'
+                     for i in range(1, 199))  # l199 joined to nothing: hung from the base
+    hashed: dict = {}  # graph -> its hashes (each primitive comes as a scene of its own)
+    original = SceneGraph.__hash__
+    monkeypatch.setattr(SceneGraph, "__hash__", lambda self: hashed.update(
+        {id(self): hashed.get(id(self), 0) + 1}) or original(self))
+    robot = load_text(tmp_path, f'<robot name="many">{links}{joints}</robot>')
+    model = scene_model(robot, collision)
+    assert max(hashed.values()) < 20
+    posed_scene = model.pose({}, None)
+    assert len(posed_scene.triangles) == 200 * (12 + 1280)
+    assert set(posed_scene.links) == {f"l{i}" for i in range(200)}
+    nodes = model.scene.graph.nodes_geometry
+    assert len(nodes) == (200 if collision else 400) and "l3" not in nodes
+    np.testing.assert_allclose(posed_scene.frames["l5"][:3, 3], [0.01, 0, 0])
+    np.testing.assert_allclose(posed_scene.frames["l199"], np.eye(4))

@@ -201,16 +201,44 @@ def test_a_leader_with_its_mimic_joints_is_pinocchios_mimic_model(tmp_path, run_
     assert set(data["mimic_leaders"]) == {"shoulder"}
 
 
-def test_gravity_loads_draw_mimic_joints_from_their_variable(mimic_arm):
+def test_gravity_loads_judge_a_mimic_joint_in_its_leaders_actuator(mimic_arm, tmp_path,
+                                                                  run_cli):
+    """A mimic joint is driven by the actuator of the joint it follows: that actuator's load
+    is its own torque plus the follower's times the multiplier (J^T, Pinocchio's mimic model's
+    G), judged against the leader's effort limit; the follower's own limit judges nothing (the
+    elbow was judged on its own torque and the shoulder on its own, as if each had a motor,
+    where the dynamics already gave the leader the group's torque)."""
+    import pinocchio as pin
+
+    from urdftool.physics.gravity_bound import worst_loads
+
     loads = {load.joint: load for load in gravity_loads(mimic_arm, 30, seed=3)}
     for load in loads.values():
         assert set(load.worst_pose) == {"shoulder"}  # the mimic joint is not drawn
-    # the forearm's pitch never changes, so neither does the elbow's torque
-    expected = M2 * G0 * L2 * math.cos(0.2)
-    assert math.isclose(loads["elbow"].worst, expected, rel_tol=1e-9)
-    worst = max(abs(_hand_gravity(q, -q + 0.2)[0]) for q in
-                [0.0] + [p["shoulder"] for p in [loads["shoulder"].worst_pose]])
-    assert math.isclose(loads["shoulder"].worst, worst, rel_tol=1e-9)
+    # the forearm's pitch never changes, so neither does the elbow's own torque: shown, not
+    # judged
+    elbow = loads["elbow"]
+    assert math.isclose(elbow.worst, M2 * G0 * L2 * math.cos(0.2), rel_tol=1e-9)
+    assert elbow.driven_by == "shoulder" and elbow.margin is None and elbow.holds is None
+    path = tmp_path / "arm.urdf"
+    path.write_text(MIMIC_ARM)
+    model = pin.buildModelFromUrdf(str(path), mimic=True)
+    data = model.createData()
+
+    def actuator(q):
+        return abs(float(pin.computeGeneralizedGravity(model, data, np.array([q]))[0]))
+
+    shoulder = loads["shoulder"]
+    assert shoulder.followers == {"elbow": -1.0}
+    assert math.isclose(shoulder.worst, actuator(shoulder.worst_pose["shoulder"]),
+                        rel_tol=1e-9)
+    climbed = {load.joint: load for load in worst_loads(mimic_arm, 30, seed=3)}["shoulder"]
+    assert math.isclose(climbed.worst, max(actuator(q) for q in np.linspace(-3, 3, 6001)),
+                        rel_tol=1e-6)
+    shown = run_cli("dynamics", path, "--samples", "30")
+    assert "not judged (mimic joints: the actuator of the joint each follows holds its " \
+        "load, judged in that joint's row): elbow (by shoulder)" in shown.stdout, shown.output
+    assert "shoulder (itself + -1 x elbow)" in shown.stdout
 
 
 def test_samples_text_reports_margins_without_the_zero_pose_matrices(run_cli, tmp_path):

@@ -82,8 +82,11 @@ SPATIAL = """<robot name="spatial">
 
 def _grid_worst(model, steps: int) -> np.ndarray:
     """The largest |G| of each joint over a grid of ``steps`` values per revolute variable
-    (a prismatic one's two ends: the torques are affine in its travel)."""
+    (a prismatic one's two ends: the torques are affine in its travel), a joint that mimic
+    joints follow as its actuator supplies it (its own and theirs, J^T)."""
     import pinocchio as pin
+
+    from urdftool.physics.dynamics import actuated
 
     axes = [np.linspace(v.lower, v.upper, 2 if v.kind == "prismatic" else steps)
             for v in model.variables]
@@ -92,7 +95,7 @@ def _grid_worst(model, steps: int) -> np.ndarray:
     worst = np.zeros(len(model.joints))
     for point in itertools.product(*axes):
         q = model.configuration(dict(zip(names, point)))
-        g = pin.computeGeneralizedGravity(model.model, model.data, q)[rows]
+        g = actuated(model, pin.computeGeneralizedGravity(model.model, model.data, q)[rows])
         worst = np.maximum(worst, np.abs(g))
     return worst
 

@@ -128,13 +128,17 @@ def _pose(robot, values, degrees, srdf, format, render, max_pairs, max_triangles
     from urdftool.collision.pose import check_pose
     from urdftool.report.collisions import write_pose
 
+    if render:  # a picture over the limit is refused before the pairs are checked
+        from urdftool.kinematics.scene import refuse_over
+
+        refuse_over(robot, True, max_triangles)
     report = check_pose(robot, values, degrees, srdf, max_pairs)
     warn(report.warnings)
     if render:
         from urdftool.kinematics.scene import scene_model
         from urdftool.report.picture import Layer, write
 
-        scene = scene_model(robot, collision=True).pose(report.q, max_triangles)
+        scene = scene_model(robot, True, max_triangles).pose(report.q, max_triangles)
         warn(scene.problems)
         colliding = {name for c in report.forbidden for name in (c.link1, c.link2)}
         write(render, [Layer(scene, highlight=colliding, label=robot.name)])

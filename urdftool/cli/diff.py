@@ -141,7 +141,7 @@ def _render(old, new, result, path, max_triangles) -> None:
     """Old and new tinted, at the configuration where they differ most; a side yourdfpy
     cannot read exits 1, located in that side's file, a side over ``max_triangles`` exits 2."""
     from urdftool.errors import OverLimit, SceneError
-    from urdftool.kinematics.scene import scene_model
+    from urdftool.kinematics.scene import refuse_over, scene_model
     from urdftool.report.diff import change_detail
     from urdftool.report.picture import NEW, OLD, Layer, PictureOptions, write
 
@@ -150,6 +150,11 @@ def _render(old, new, result, path, max_triangles) -> None:
     old_q = {back.get(name.partition(".")[0], name.partition(".")[0])
              + name[len(name.partition(".")[0]):]: value for name, value in worst.items()}
     scenes = []
+    for robot, q in ((old, old_q), (new, worst)):
+        try:
+            refuse_over(robot, False, max_triangles)  # both, before either is built
+        except OverLimit as error:
+            fail_over_limit(error, "--max-scene-triangles")
     for robot, q in ((old, old_q), (new, worst)):
         try:
             scenes.append(scene_model(robot).pose(q, max_triangles))

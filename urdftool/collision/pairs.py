@@ -201,12 +201,14 @@ class PairChecker:
                 continue
             mover = moving[pb[row]]
             mover.setTransform(fcl.Transform(rotation[n], translation[n]))
-            gap = fcl.distance(fixed[pa[row]], mover, self._distance_request, fcl.DistanceResult())
+            gap = _gap(fcl.distance(fixed[pa[row]], mover, self._distance_request,
+                                    fcl.DistanceResult()))
             if gap < distance[pair]:
                 distance[pair] = gap
 
     def exact(self, link_poses: np.ndarray, pair: int, contacts: bool = False,
-              part_poses: np.ndarray | None = None, placed: bool = False):
+              part_poses: np.ndarray | None = None, placed: bool = False,
+              touching_first: bool = False):
         """(colliding, distance [m], depth [m] or None, depth bound [m] or None) of one link
         pair at one pose; the depths only with ``contacts`` (else 0).
 
@@ -219,7 +221,10 @@ class PairChecker:
 
         part_poses: :meth:`part_poses` of ``link_poses`` when the caller asks about many pairs
         at the same pose (then ``link_poses`` is not read); placed: :meth:`place` has put
-        every part there already (each part is then not placed again for each pair)."""
+        every part there already (each part is then not placed again for each pair);
+        touching_first: a mesh's contact that only touches (:data:`TOUCHING`) is told without
+        its hull (:meth:`_hull_depth`), its depth then None, bounded (for a caller that wants
+        only the contacts deeper than that: check's SRDF overlaps)."""
         depth, bound, nearest, hit = 0.0, 0.0, np.inf, False
         request = fcl.CollisionRequest(num_max_contacts=16, enable_contact=True) if contacts \
             else self._request
@@ -233,14 +238,14 @@ class PairChecker:
                 one, two = self._place(part_poses, a), self._place(part_poses, b)
             result = fcl.CollisionResult()
             if not fcl.collide(one, two, request, result):
-                nearest = min(nearest, fcl.distance(one, two, self._distance_request,
-                                                    fcl.DistanceResult()))
+                nearest = min(nearest, _gap(fcl.distance(one, two, self._distance_request,
+                                                         fcl.DistanceResult())))
                 continue
             hit = True
             if not contacts:
                 continue
             if self.is_mesh[a] or self.is_mesh[b]:
-                here, at_most = self._hull_depth(a, b, part_poses)
+                here, at_most = self._hull_depth(a, b, part_poses, touching_first)
             else:
                 here = at_most = min(max(c.penetration_depth for c in result.contacts),
                                      self._overlap(a, b, part_poses, result.contacts))
@@ -248,10 +253,19 @@ class PairChecker:
             bound = None if bound is None or at_most is None else max(bound, at_most)
         return hit, (0.0 if hit else nearest), depth, bound
 
-    def _hull_depth(self, a: int, b: int, part_poses) -> tuple[float | None, float | None]:
+    def _hull_depth(self, a: int, b: int, part_poses,
+                    touching_first: bool = False) -> tuple[float | None, float | None]:
         """(depth, bound) [m] of parts ``a`` and ``b`` in contact, a mesh among them: FCL's
         penetration depth (GJK/EPA) between their convex hulls (a primitive is its own hull),
-        exact when each mesh is convex (its volume is its hull's), else only a bound."""
+        exact when each mesh is convex (its volume is its hull's), else only a bound. With
+        ``touching_first``, surfaces that only touch (parts exported to share a face) are told
+        first, by the least overlap along the axes and the centres' line from the meshes' own
+        vertices: their depth is at most that bound (None, the bound), and no hull is built
+        (qhull, and the imports of scipy and trimesh it needs)."""
+        if touching_first:
+            least = self._overlap(a, b, part_poses, ())
+            if least <= TOUCHING:
+                return None, least
         shapes, exact = [], True
         for part in (a, b):
             if self.is_mesh[part]:
@@ -301,8 +315,8 @@ class PairChecker:
         local = pose[:3, :3].T @ d
         centre = float(d @ pose[:3, 3])
         shape = self.geometries[part]
-        if self.is_mesh[part]:
-            return centre + float(np.max(self._hull(part)[2] @ local))
+        if self.is_mesh[part]:  # its vertices' (the hull's points' maximum is theirs)
+            return centre + float(np.max(self.meshes[part][0] @ local))
         if isinstance(shape, fcl.Box):
             return centre + float(np.abs(local) @ (np.asarray(shape.side) / 2))
         if isinstance(shape, fcl.Cylinder):
@@ -311,8 +325,7 @@ class PairChecker:
         return centre + shape.radius  # a sphere
 
     def _hull(self, part: int):
-        """(FCL convex hull, whether the mesh is convex, the hull's points) of mesh part
-        ``part``, built once;
+        """(FCL convex hull, whether the mesh is convex) of mesh part ``part``, built once;
         None for a mesh without volume (flat), which has no hull."""
         if part not in self._hulls:
             self._hulls[part] = _convex(*self.meshes[part])
@@ -338,6 +351,13 @@ class PairChecker:
         return self.moving[part]
 
 
+def _gap(distance: float) -> float:
+    """FCL's distance of two shapes its collision test found apart [m]: FCL answers -1, its
+    "in collision", for shapes that only touch (boxes sharing a face: the collision test says
+    apart, the distance's GJK overlapping), which was shown as -1000 mm apart; they are 0 apart."""
+    return max(0.0, distance)
+
+
 # a closed mesh whose volume is within this fraction of its convex hull's is convex: the hulls'
 # depth is its own (a faceted sphere or cylinder, a box exported as triangles)
 CONVEX = 1e-3
@@ -345,8 +365,8 @@ CONVEX = 1e-3
 
 def _convex(vertices: np.ndarray, faces: np.ndarray):
     """(fcl.Convex of the hull of ``vertices``, whether the mesh ``vertices``, ``faces`` is that
-    hull: closed, with the hull's volume to :data:`CONVEX`, the hull's points), or None when the
-    points span no volume."""
+    hull: closed, with the hull's volume to :data:`CONVEX`), or None when the points span no
+    volume."""
     import trimesh
     from scipy.spatial import ConvexHull, QhullError
 
@@ -362,8 +382,7 @@ def _convex(vertices: np.ndarray, faces: np.ndarray):
     renumber[hull.vertices] = np.arange(len(hull.vertices))
     triangles = renumber[hull.simplices]
     counts = np.full((len(triangles), 1), 3, dtype=np.int64)
-    return (fcl.Convex(points, len(triangles), np.hstack([counts, triangles]).ravel()), convex,
-            points)
+    return fcl.Convex(points, len(triangles), np.hstack([counts, triangles]).ravel()), convex
 
 
 def separated(a: np.ndarray, half_a: np.ndarray, b: np.ndarray, half_b: np.ndarray) -> np.ndarray:

@@ -19,7 +19,8 @@ class Contact:
     in contact the depth of the convex hulls, and ``depth`` None); None when not even that is
     known (a flat mesh)
     allowed: why the pair may touch ('Adjacent', an SRDF reason, 'Welded': held together by
-    fixed joints alone, so in contact in every configuration), or '' when it must not
+    fixed joints alone, so in contact in every configuration, 'Closing': joined by a joint
+    written in a ``<gazebo>`` block, closing a loop), or '' when it must not
     """
 
     link1: str
@@ -101,10 +102,11 @@ def configuration(scene, values: dict[str, str], degrees: bool = False):
 def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: int = 5,
           srdf: str | None = None) -> PoseReport:
     """Every pair of links with geometry at configuration ``q``."""
-    from urdftool.kinematics.tree import welded_pairs
+    from urdftool.kinematics.tree import closing_pairs, welded_pairs
 
     poses = scene.at(q)
     welded = welded_pairs(scene.robot, set(scene.links))
+    closing = closing_pairs(scene.robot, set(scene.links))
     # Parts placed once, not once per pair (that was n^3 at 1,500 links)
     scene.checker.place(parts := scene.checker.part_poses(poses))
     contacts = []
@@ -112,7 +114,7 @@ def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: in
         hit, distance, depth, bound = scene.checker.exact(poses, index, contacts=True,
                                                           part_poses=parts, placed=True)
         reason = "Adjacent" if pair in scene.adjacent else allowed.get(pair, "") or \
-            ("Welded" if pair in welded else "")
+            ("Welded" if pair in welded else "Closing" if pair in closing else "")
         contacts.append(Contact(*pair, hit, distance, depth, reason, depth_at_most=bound))
     # deepest first (a bound counts as its depth), a contact of no known bound before all
     colliding = sorted((c for c in contacts if c.colliding),

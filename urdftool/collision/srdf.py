@@ -287,7 +287,8 @@ def overlaps(robot, srdf_root) -> dict[tuple[str, str], Overlap]:
             if parts is None:  # every part placed once for the pairs at this pose (as pose.py)
                 scene.checker.place(parts := scene.checker.part_poses(scene.at(q)))
             depth, bound = scene.checker.exact(None, index[pair], contacts=True,
-                                               part_poses=parts, placed=True)[2:]
+                                               part_poses=parts, placed=True,
+                                               touching_first=True)[2:]
             overlap = found.setdefault(pair, Overlap(*pair, adjacent=pair in scene.adjacent))
             overlap.depth = None if None in (overlap.depth, depth) else max(overlap.depth, depth)
             overlap.depth_at_most = None if None in (overlap.depth_at_most, bound) else \

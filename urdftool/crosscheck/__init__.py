@@ -13,9 +13,10 @@ For each loader: whether it loaded, or its error mapped back to the line of the 
 wrote; total mass; degrees of freedom; floating or fixed base; the URDF links it dropped or
 fused; frame positions at the zero configuration and a few others; the inertia it holds. The
 loaders **disagree** when the positions of a frame two of them keep differ by more than
-:data:`TOLERANCE`; masses and degrees of freedom are reported side by side (they differ by
-design: Drake floats a robot that MuJoCo welds, PyBullet gives massless links 1 kg), each
-difference said in words.
+:data:`TOLERANCE`, or when a loader's total mass is not what its own reading of a URDF makes of
+the masses declared (:mod:`.masses`: PyBullet gives a link without ``<inertial>`` 1 kg, MuJoCo
+fuses the links welded to the world into it); degrees of freedom and bases are reported side by
+side (Drake floats a robot that MuJoCo welds), each difference said in words.
 """
 
 from __future__ import annotations
@@ -532,22 +533,34 @@ def _unfound_advice(robot, names: list[str]) -> str:
     not there ('urdftool check' says where it was looked for)."""
     from urdftool.description.packages import package_uri_parts
 
+    from urdftool.description.files import kind_of
+
     names = list(dict.fromkeys(names))
-    unknown, missing = [], []
+    unknown, missing, elsewhere = [], [], []
     for name in names:
         uri = next((e.get("filename") for e in robot.root.iter("mesh")
                     if _names(robot, e.get("filename") or "", name)), None)
         package = package_uri_parts(uri)[0] if uri and uri.startswith("package://") else None
         try:
-            known = package is None or bool(robot.resolver.find(package))
+            folder = robot.resolver.find(package) if package is not None else None
+            known = True
         except Exception:  # noqa: BLE001 - an unknown package
-            known = False
+            known, folder = False, None
         if not known:
             unknown.append(package)
+        elif folder is not None and Path(folder).name != package and \
+                kind_of(Path(folder, package_uri_parts(uri)[1])) == "file":
+            elsewhere.append((package, Path(folder)))
         else:
             missing.append(uri or name)
     said = f"it cannot find mesh '{names[0]}'" + (f" and {len(names) - 1} more" if
                                                  len(names) > 1 else "")
+    if elsewhere and not unknown:
+        package, folder = elsewhere[0]
+        return (f"{said}, which is there: PyBullet looks for package://{package}/... as a "
+                f"folder named '{package}' above the file it reads, and package '{package}' is "
+                f"the folder '{folder.name}' ({folder}), found by its package.xml; a "
+                f"workspace whose folder is named '{package}' loads")
     if unknown:
         first = list(dict.fromkeys(unknown))[0]
         return (f"{said}; package '{first}' is not found by urdftool either: give it with "
@@ -629,7 +642,8 @@ def _unplaced(loaded: list, robot) -> dict:
 
 def _compare(report: Crosscheck, robot) -> None:
     """Fill ``disagreements`` (frames two loaders keep, apart by more than TOLERANCE) and
-    ``differences`` (mass, degrees of freedom, base, dropped links: said, not failed)."""
+    ``differences`` (masses accounted for, degrees of freedom, base, dropped links: said, not
+    failed); a total mass no reading accounts for is a disagreement (:mod:`.masses`)."""
     loaded = [r for r in report.loaders if r.loaded and r.frames]
     unplaced = _unplaced(loaded, robot)
     for result in loaded:
@@ -658,8 +672,10 @@ def _compare(report: Crosscheck, robot) -> None:
                     report.disagreements.append(
                         f"{first.name} and {second.name} place link '{where}' {number(worst, 3)} m "
                         f"apart at {at}")
-    for label, key in (("total mass [kg]", "mass"), ("degrees of freedom", "dof"),
-                       ("floating base", "floating_base")):
+    from urdftool.crosscheck.masses import compare as masses
+
+    masses(report, robot)
+    for label, key in (("degrees of freedom", "dof"), ("floating base", "floating_base")):
         values = {r.name: getattr(r, key) for r in report.loaders if r.loaded}
         shown = {v if not isinstance(v, float) else round(v, 9) for v in values.values()}
         if len(shown) > 1:

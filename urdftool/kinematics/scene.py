@@ -75,10 +75,14 @@ class SceneModel:
         self._nodes = [(node, self.scene.graph.transforms.parents[node])
                        for node in self.scene.graph.nodes_geometry]
         self.links = list(dict.fromkeys(link for _, link in self._nodes))
-        # closed, consistently wound surfaces: their faces turned away can be left undrawn
-        self._closed = {node: bool(self._geometry(node).is_watertight
-                                   and self._geometry(node).is_winding_consistent)
-                        for node, _ in self._nodes}
+        # closed, consistently wound surfaces: their faces turned away can be left undrawn; a
+        # primitive (box, sphere, cylinder) is closed by construction (asking trimesh took 15
+        # of 68 s on 2,000 spheres: each one's edges grouped)
+        from trimesh.primitives import Primitive
+
+        self._closed = {node: isinstance(self._geometry(node), Primitive) or bool(
+            self._geometry(node).is_watertight and self._geometry(node).is_winding_consistent)
+            for node, _ in self._nodes}
 
     @property
     def triangle_count(self) -> int:
@@ -210,16 +214,83 @@ def _yourdfpy(robot, collision: bool):
     _follow_variables(robot, root)
     try:
         model = yourdfpy.URDF._parse_robot(root)
-        return yourdfpy.URDF(model, build_scene_graph=not collision,
-                             build_collision_scene_graph=collision, load_meshes=False,
-                             load_collision_meshes=False,
+        urdf = yourdfpy.URDF(model, build_scene_graph=False, build_collision_scene_graph=False,
+                             load_meshes=False, load_collision_meshes=False,
                              filename_handler=lambda fname: _contained(robot, fname))
+        urdf._base_link = urdf._determine_base_link()
+        if collision:
+            urdf._scene_collision = _scene_graph(urdf, collision)
+        else:
+            urdf._scene = _scene_graph(urdf, collision)
+        return urdf
     except KeyError as error:  # yourdfpy reads required attributes as attrib[name]
         raise SceneError(f"yourdfpy cannot build the scene: an element lacks its "
                          f"'{error.args[0]}' attribute; run 'urdftool check' for where") from None
     except Exception as error:  # yourdfpy raises what its parsing meets (ValueError, ...)
         raise SceneError(f"yourdfpy cannot build the scene ({described(error)}); "
                          "run 'urdftool check' for the cause") from None
+
+
+def _scene_graph(urdf, collision: bool):
+    """The trimesh scene yourdfpy's ``_create_scene`` makes (a node per link, joints as edges,
+    each link's boxes, cylinders and spheres hung from it; for collision geometry, each link's
+    concatenated into one), built in time linear in the links: yourdfpy asks the scene's
+    ``graph.nodes`` once per link, which trimesh computes again after every update from a hash
+    of the whole graph (86 of 93 s on 2,000 links of two primitives each; 44 s for 4,000 links
+    where 1,000 took 2), and names each geometry by trying ``name_0``, ``name_1``... past those
+    taken (robots name every visual alike)."""
+    import numpy as np
+    import trimesh
+    from yourdfpy.urdf import Visual, apply_visual_color
+
+    scene = trimesh.scene.Scene(base_frame=urdf._base_link)
+    nodes = {urdf._base_link}
+    for joint in urdf.robot.joints:
+        matrix, _ = urdf._forward_kinematics_joint(joint)
+        scene.graph.update(frame_from=joint.parent, frame_to=joint.child, matrix=matrix)
+        nodes.update((joint.parent, joint.child))
+    for link in urdf.robot.links:  # not joined: hung from the base, as yourdfpy does
+        if link.name not in nodes:
+            scene.graph.update(frame_from=urdf._base_link, frame_to=link.name)
+            nodes.add(link.name)
+    counts: dict = {}
+
+    def unique(name: str, taken) -> str:
+        found = name
+        while found in taken:
+            counts[name] = counts.get(name, 0) + 1
+            found = f"{name}_{counts[name]}"
+        return found
+
+    for link in urdf.robot.links:
+        parts = []
+        for shape in (link.collisions if collision else link.visuals):
+            if shape.geometry is None:
+                continue
+            made = urdf._geometry2trimeshscene(geometry=shape.geometry, load_file=False,
+                                               force_mesh=collision, skip_materials=collision)
+            if made is None:
+                continue
+            origin = shape.origin if shape.origin is not None else np.eye(4)
+            for node in made.graph.nodes_geometry:
+                transform, name = made.graph.get(node)
+                geometry = made.geometry[name]
+                if isinstance(shape, Visual):
+                    apply_visual_color(geometry, shape, urdf._material_map)
+                parts.append((shape.name, geometry, origin @ transform))
+        if collision and parts:  # one geometry per link, as yourdfpy's force_mesh
+            single = trimesh.Scene(base_frame=link.name)
+            for name, geometry, transform in parts:
+                single.add_geometry(geometry=geometry, geom_name=name,
+                                    parent_node_name=link.name, transform=transform)
+            parts = [(parts[0][0], single.dump(concatenate=True), np.eye(4))]
+        for name, geometry, transform in parts:
+            key = unique(name or f"geometry_{len(scene.geometry)}", scene.geometry)
+            node = unique(key, nodes)
+            nodes.add(node)
+            scene.add_geometry(geometry=geometry, geom_name=key, node_name=node,
+                               parent_node_name=link.name, transform=transform)
+    return scene
 
 
 def _follow_variables(robot, root) -> None:
@@ -256,9 +327,82 @@ def _contained(robot, fname: str) -> str:
         return ""
 
 
-def scene_model(robot, collision: bool = False) -> SceneModel:
-    """The robot's scene model, built once per robot and kind of geometry."""
+# Triangles trimesh makes of each primitive yourdfpy draws (trimesh 4: a Box's 12, a Sphere's
+# icosphere of 3 subdivisions, a Cylinder's 32 sections: sides and caps)
+PRIMITIVE_TRIANGLES = {"box": 12, "sphere": 1280, "cylinder": 128}
+
+
+def described_triangles(robot, collision: bool = False) -> int:
+    """The triangles of the robot's visual (or collision) geometry as its description says,
+    before any scene is built: each primitive as trimesh makes it, each mesh as its file
+    counts them (read without building the mesh; a mesh that cannot be drawn or counted so
+    adds none, :meth:`SceneModel.pose` counts it once built). A mesh the scene leaves out adds
+    none either: a Git LFS pointer (its text read as a binary STL's header is a billion
+    triangles: the Ruiyan hand's 17.9 G refused), one over the per-mesh limits."""
+    from urdftool.description.xml import first_child
+
+    counts: dict = {}
+    total = 0
+    for element in robot.root.iterchildren("link"):
+        for shape in element.iterchildren("collision" if collision else "visual"):
+            geometry = first_child(shape, "geometry")
+            if geometry is None:
+                continue
+            for child in geometry.iterchildren():
+                if child.tag in PRIMITIVE_TRIANGLES:
+                    total += PRIMITIVE_TRIANGLES[child.tag]
+                elif child.tag == "mesh":
+                    uri = child.get("filename") or ""
+                    if uri not in counts:
+                        counts[uri] = _mesh_triangles(robot, uri)
+                    total += counts[uri]
+                else:
+                    continue
+                break  # yourdfpy draws a geometry's first shape
+    return total
+
+
+def _mesh_triangles(robot, uri: str) -> int:
+    """The triangles of the mesh at ``uri`` as its file counts them; 0 for one that
+    :func:`~urdftool.description.meshes.load_mesh` refuses before reading it (its limits,
+    checked in the bytes: a Git LFS pointer, too many bytes or triangles), which the scene
+    leaves out, or that cannot be counted so."""
+    from urdftool.description.files import read_regular
+    from urdftool.description.meshes import resolve, triangle_count
+    from urdftool.description.meshes.reading import check_size
+
+    limits = robot.mesh_limits
+    try:
+        path = resolve(robot, uri)
+        data = read_regular(path, limits.max_bytes + 1, as_="mesh")
+        check_size(path, uri, limits, data, count=False)
+        count = triangle_count(path, data) or 0
+    except (MeshProblem, OSError):
+        return 0
+    return count if count <= limits.max_triangles else 0
+
+
+def scene_model(robot, collision: bool = False,
+                max_triangles: int | None = None) -> SceneModel:
+    """The robot's scene model, built once per robot and kind of geometry; OverLimit before
+    it is built when its description holds more than ``max_triangles`` (None: no limit):
+    building a scene of 20,000 spheres (25 M triangles) took past the time budget."""
+    refuse_over(robot, collision, max_triangles)
     return robot.memo((scene_model, collision), lambda: SceneModel(robot, collision))
+
+
+def refuse_over(robot, collision: bool, max_triangles: int | None) -> None:
+    """OverLimit when the robot's description (:func:`described_triangles`) holds more than
+    ``max_triangles`` (None: no limit)."""
+    if max_triangles is None:
+        return
+    count = robot.memo((described_triangles, collision),
+                       lambda: described_triangles(robot, collision))
+    if count > max_triangles:
+        from urdftool.errors import OverLimit
+
+        raise OverLimit("the robot's geometry, every instance of a mesh counted",
+                        count, max_triangles, "triangles")
 
 
 def posed(robot, words: dict[str, str] | None = None, degrees: bool = False,
@@ -268,7 +412,7 @@ def posed(robot, words: dict[str, str] | None = None, degrees: bool = False,
     ``max_triangles`` (see :meth:`SceneModel.pose`)."""
     from urdftool.kinematics import configuration as config
 
-    model = scene_model(robot, collision)
+    model = scene_model(robot, collision, max_triangles)
     chosen = config.from_words(model.all_variables, words or {}, degrees, model.mimics)
     q = {v.name: float(x) for v, x in zip(model.all_variables, chosen.values[0])}
     return model.pose(q, max_triangles), chosen.warnings

@@ -77,3 +77,16 @@ def welded_pairs(robot, links: set[str]) -> set[tuple[str, str]]:
         groups.setdefault(find(name), []).append(name)
     return {pair_key(a, b) for members in groups.values()
             for i, a in enumerate(members) for b in members[i + 1:]}
+
+
+def closing_pairs(robot, links: set[str]) -> set[tuple[str, str]]:
+    """Pairs of ``links`` joined by a joint written in a ``<gazebo>`` block (an SDF joint, its
+    ``<parent>`` and ``<child>`` naming links): how a parallel robot for Gazebo closes its loops
+    (a delta's legs on their platform), a joint no URDF reader has in its tree."""
+    found = set()
+    for block in robot.root.iterchildren("gazebo"):
+        for joint in block.iterchildren("joint"):
+            ends = [(joint.findtext(end) or "").strip() for end in ("parent", "child")]
+            if ends[0] != ends[1] and all(end in links for end in ends):
+                found.add(pair_key(*ends))
+    return found

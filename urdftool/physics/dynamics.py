@@ -353,6 +353,11 @@ class JointLoad:
     sampled: float | None = None  # the worst of the samples, when ``worst`` was refined
     evaluations: int = 0  # of G(q) while refining
     reduction: float = 1.0  # of the transmission driving the joint (:func:`reductions`)
+    # a mimic joint: the joint it follows, whose actuator drives it and carries its load (its
+    # ``worst`` is its own torque, not judged); a joint mimic joints follow: them, with their
+    # multipliers (its ``worst`` is its actuator's: its own torque plus theirs, J^T)
+    driven_by: str | None = None
+    followers: dict = field(default_factory=dict)
 
     @property
     def held_at_the_motor(self) -> bool:
@@ -363,12 +368,14 @@ class JointLoad:
 
     @property
     def limited(self) -> bool:
-        return judged_effort(self.effort)
+        """Judged against its effort limit: a usable one, and no mimic joint (its leader's
+        actuator holds it, and is judged with its load)."""
+        return judged_effort(self.effort) and self.driven_by is None
 
     @property
     def passive(self) -> bool:
         """``<limit effort="0">`` (or below): no actuator torque declared."""
-        return self.effort <= 0
+        return self.effort <= 0 and self.driven_by is None
 
     @property
     def margin(self) -> float | None:
@@ -384,7 +391,8 @@ class JointLoad:
                 "worst": self.worst, "sampled_worst": self.sampled,
                 "margin": self.margin, "holds": self.holds, "reduction": self.reduction,
                 "zero_pose": self.zero_pose,
-                "worst_pose": self.worst_pose}
+                "worst_pose": self.worst_pose, "driven_by": self.driven_by,
+                "followers": self.followers}
 
 
 def gravity_variables(model: Model, joint: str) -> set[str]:
@@ -395,8 +403,35 @@ def gravity_variables(model: Model, joint: str) -> set[str]:
     joint_id = m.getJointId(joint)
     ids = set(m.supports[joint_id]) | set(m.subtrees[joint_id])
     names = {m.names[i] for i in ids}
+    for follower in followers_of(model).get(joint, {}):  # its actuator carries theirs too
+        follower_id = m.getJointId(follower)
+        names |= {m.names[i] for i in (*m.supports[follower_id], *m.subtrees[follower_id])}
     variables = {variable.name for variable in model.variables}
     return {model.mimics.get(name, (name,))[0] for name in names} & variables
+
+
+def followers_of(model: Model) -> dict:
+    """joint -> {mimic joint that follows it: multiplier}, for the joints of ``model.joints``
+    whose actuator drives mimic joints (a follower's leader is the variable it follows in the
+    end, through a chain of mimics)."""
+    joints = set(model.joints)
+    found: dict = {}
+    for joint, (leader, multiplier, _) in model.mimics.items():
+        if joint in joints and leader in joints and joint != leader:
+            found.setdefault(leader, {})[joint] = float(multiplier)
+    return found
+
+
+def actuated(model: Model, torques: np.ndarray) -> np.ndarray:
+    """``torques`` (per joint, ``model.joints`` order; or [poses, joints]) as the actuators
+    supply them: a joint that mimic joints follow supplies its own plus each follower's times
+    its multiplier (J^T: the power is the same); a follower's own torque is kept, for showing."""
+    result = np.array(torques, dtype=float, copy=True)
+    index = {name: i for i, name in enumerate(model.joints)}
+    for leader, followers in followers_of(model).items():
+        for follower, multiplier in followers.items():
+            result[..., index[leader]] += multiplier * np.asarray(torques)[..., index[follower]]
+    return result
 
 
 def gravity_loads(model: Model, samples: int, seed: int = 0, torques=None,
@@ -427,8 +462,11 @@ def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None, progr
     poses = [{variable.name: variable.default for variable in model.variables}]
     poses += [dict(zip(names, (float(v) for v in row))) for row in drawn]
     ids = [m.getJointId(name) for name in model.joints]
+    followers = followers_of(model)
+    leaders = {follower: leader for leader, found in followers.items() for follower in found}
     loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0,
-                       reduction=model.reductions.get(name, 1.0))
+                       reduction=model.reductions.get(name, 1.0), driven_by=leaders.get(name),
+                       followers=dict(followers.get(name, {})))
              for name, i in zip(model.joints, ids)]
     if torques is None:
         rows = [m.joints[joint_id].idx_v for joint_id in ids]
@@ -442,7 +480,8 @@ def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None, progr
         kept.append(values)
         if values is None:  # a pose the caller leaves out
             continue
-        table.append(np.asarray(values, dtype=float))
+        values = actuated(model, values) if followers else np.asarray(values, dtype=float)
+        table.append(values)
         for load, torque in zip(loads, np.abs(values)):
             torque = float(torque)
             torque = 0.0 if torque < _ROUND_OFF else torque  # a vertical axis: 1e-16, not load

@@ -44,12 +44,15 @@ class _Torque:
     ``model.variables`` order): Pinocchio's q is written in place, each variable to the joints
     it drives (itself and the mimic joints that follow it)."""
 
-    def __init__(self, model: Model, joint: str):
+    def __init__(self, model: Model, joint: str, followers: dict | None = None):
         import pinocchio as pin
 
         self.model, self.gravity = model, pin.computeGeneralizedGravity
         m = model.model
-        self.row = m.joints[m.getJointId(joint)].idx_v
+        # the joint's actuator's torque: its own G, plus each mimic joint's it drives times
+        # that one's multiplier (urdftool.physics.dynamics.actuated)
+        self.rows = [(m.joints[m.getJointId(name)].idx_v, weight) for name, weight in
+                     [(joint, 1.0), *(followers or {}).items()]]
         index = {variable.name: k for k, variable in enumerate(model.variables)}
         self.writes: list[list[tuple[int, int, float, float]]] = [[] for _ in index]
         for name in model.joints:
@@ -79,7 +82,8 @@ class _Torque:
         if values is not None:
             self.load(values)
         self.evaluations += 1
-        return float(self.gravity(self.model.model, self.model.data, self.q)[self.row])
+        gravity = self.gravity(self.model.model, self.model.data, self.q)
+        return float(sum(weight * gravity[row] for row, weight in self.rows))
 
 
 def worst_loads(model: Model, samples: int, seed: int = 0, progress=None) -> list[JointLoad]:
@@ -104,7 +108,7 @@ def refine(model: Model, loads: list[JointLoad], samples: np.ndarray,
         free = sorted(index[name] for name in gravity_variables(model, load.joint) if name in index)
         if not free or not len(samples):
             continue
-        torque = _Torque(model, load.joint)
+        torque = _Torque(model, load.joint, load.followers)
         column_values = torques[:, column]
         for sign in (1.0, -1.0):
             order = np.argsort(-sign * column_values)[:STARTS]

@@ -102,6 +102,11 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
                           "contact in every configuration, which no motion changes; MoveIt "
                           "checks the pair unless the SRDF disables it (its Setup Assistant "
                           "does, 'Default')")
+        if any(c.allowed == "Closing" for c in listed):
+            console.print("Closing: joined by a joint written in a <gazebo> block, which closes "
+                          "a loop (a parallel robot's legs on their platform): Gazebo joins "
+                          "them and does not collide them; the URDF's tree, and MoveIt, do not "
+                          "know the joint: MoveIt checks the pair unless the SRDF disables it")
         if any(c.touching and not c.allowed for c in listed):
             console.print(f"touching: in contact at most {number(TOUCHING * 1000)} mm deep, "
                           "surfaces that meet, not a collision; MoveIt (FCL, padding 0) "

@@ -44,7 +44,7 @@ def text(result) -> str:
     if result.disagreements:
         lines += ["", "disagree:"] + [f"  {line}" for line in result.disagreements]
     if result.differences:
-        lines += ["", "differ (by design of each loader):"]
+        lines += ["", "differ (as each loader reads a URDF):"]
         lines += [f"  {line}" for line in result.differences]
     if result.missing:
         lines += ["", "not installed:"]

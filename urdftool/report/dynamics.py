@@ -135,14 +135,27 @@ def load_lines(loads, title: str, relevant=()) -> list[str]:
                          if k in relevant and number(v, places=3) != "0.000")
         lines.append(f"  smallest margin: {_text(least.joint)} ({number(least.margin, 3)} of "
                      f"{number(least.effort, 3)}) at {pose or 'the zero pose'}")
-    unlimited = [_text(load.joint) for load in loads if not load.limited and not load.passive]
+    leading = [load for load in loads if load.followers]
+    if leading:
+        lines.append("  with the joints that mimic them (one actuator drives them all, so its "
+                     "load is its own plus theirs, J^T): " + ", ".join(
+                         f"{_text(load.joint)} (itself + " + " + ".join(
+                             f"{number(m)} x {_text(j)}" for j, m in load.followers.items()) + ")"
+                         for load in leading))
+    driven = [load for load in loads if load.driven_by is not None]
+    if driven:
+        lines.append("  not judged (mimic joints: the actuator of the joint each follows holds "
+                     "its load, judged in that joint's row): " + ", ".join(
+                         f"{_text(load.joint)} (by {_text(load.driven_by)})" for load in driven))
+    unlimited = [_text(load.joint) for load in loads
+                 if not load.limited and not load.passive and load.driven_by is None]
     if unlimited:
         lines.append(f"  not judged (no effort limit in the URDF, so no margin): "
                      f"{', '.join(unlimited)}")
     passive = [_text(load.joint) for load in loads if load.passive]
     if passive:
         lines.append(f"  not judged (effort 0 in the URDF: {PASSIVE}): {', '.join(passive)}")
-    unlimited += passive
+    unlimited += passive + [_text(load.joint) for load in driven]
     failing = [_text(load.joint) for load in loads if load.holds is False]
     motor = [load for load in loads if load.held_at_the_motor]
     if motor:
