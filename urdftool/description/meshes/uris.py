@@ -90,7 +90,7 @@ def _found_by_xacro(robot, uri: str) -> tuple[str, str, str] | None:
     by the robots of eca_a9 and rexrov2, other repositories): xacro writes where the package
     is on the machine it runs on, on any machine, as ``package://NAME/...`` names it; so it
     is read and checked as that package's file. None otherwise (an absolute path written as
-    such names one machine's files: outside the repository, U409)."""
+    such names one machine's files: outside the repository)."""
     if not uri.startswith("file://") or not robot.from_xacro:
         return None
     path = uri[len("file://"):]
