@@ -235,11 +235,17 @@ class PackageResolver:
     def locate(self, path) -> Located:
         """Where ``path`` is when it lies below a package this resolver found (``$(find
         NAME)/...``): see :func:`installed`. Any other path is as named."""
+        below = self.package_at(path)
+        return installed(*below, path) if below else Located(Path(path))
+
+    def package_at(self, path) -> tuple[str, Path] | None:
+        """The name and folder of the package this resolver found (by ``$(find NAME)`` or
+        ``package://NAME``) whose folder holds ``path`` (the innermost); None for none."""
         named = os.path.abspath(path)
         for name, folder in sorted(self._cache.items(), key=lambda item: -len(str(item[1]))):
             if named == str(folder) or named.startswith(str(folder).rstrip(os.sep) + os.sep):
-                return installed(name, folder, path)
-        return Located(Path(path))
+                return name, folder
+        return None
 
 
 # ---- a package's manifest: which package a file is in, what that package declares -------------

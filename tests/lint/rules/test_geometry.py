@@ -460,3 +460,37 @@ def test_a_mesh_in_a_workspaces_install_space_is_given_its_package_uri(tmp_path)
                             "'package://kd/meshes/a.dae'"), message
     [(_, message)] = _u407(tmp_path / "r.urdf", "/home/x/meshes/c.stl", "U409")
     assert message.endswith("use package://PKG/... for files of another package"), message
+
+
+def test_a_file_uri_xacro_made_with_find_of_a_package_elsewhere_is_that_packages_file(tmp_path):
+    """uuv_simulator's sensor macros write ``file://$(find uuv_sensor_ros_plugins)/meshes/...``;
+    the robots of eca_a9 and rexrov2 (other repositories) use them with uuv_simulator found on
+    the package path, and U409 said the mesh left the robot's repository: an error on every
+    machine where xacro runs, though xacro writes where the package is on that machine, as
+    package:// names it. Read and checked as that package's file (one that leaves the package
+    is U409 as package:// is); an absolute path written as such stays U409, and so does one
+    into a package found for a package:// mesh that no $(find) names."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    sensors, vehicle = tmp_path / "sensors", tmp_path / "vehicle"
+    for repository, name in ((sensors, "sensor_plugins"), (vehicle, "vehicle")):
+        (repository / ".git").mkdir(parents=True)
+        (repository / "package.xml").write_text(
+            f'<package format="2"><name>{name}</name></package>')
+    _stl(sensors / "meshes" / "dvl.stl")
+    (sensors / "meshes" / "outside.stl").symlink_to(tmp_path / "elsewhere.stl")
+    _stl(tmp_path / "elsewhere.stl")
+
+    def codes(filename):
+        robot = vehicle / "robot.urdf.xacro"
+        robot.write_text(
+            '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a">'
+            f'<visual><geometry><mesh filename="{filename}"/></geometry></visual></link>'
+            '</robot>')
+        result = load_and_check(str(robot), CheckOptions(packages={"sensor_plugins": sensors}))
+        return sorted(f.code for f in result.findings if f.code.startswith("U40"))
+
+    assert codes("file://$(find sensor_plugins)/meshes/dvl.stl") == []
+    assert codes("file://$(find sensor_plugins)/meshes/none.stl") == ["U408"]
+    assert codes("file://$(find sensor_plugins)/meshes/outside.stl") == ["U409"]
+    assert codes(f"file://{sensors}/meshes/dvl.stl") == ["U409"]

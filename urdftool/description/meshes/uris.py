@@ -3,7 +3,8 @@
 - the URI resolves (``package://`` through the robot's resolver, ``file://``, relative);
 - a ``file://`` or relative path may not leave the containment root (the nearest ancestor of
   the robot file holding ``.git``; without one, the robot's package folder, else its folder);
-  a ``package://`` path may not leave its package folder;
+  a ``package://`` path may not leave its package folder, nor a ``file://`` path made by a
+  ``$(find PKG)`` of the robot's xacro (read as ``package://PKG/...``, :func:`_found_by_xacro`);
 - only files with a mesh extension are opened (:data:`MESH_EXTENSIONS`).
 
 A URI is resolved and checked once per robot, a path once per run.
@@ -66,13 +67,42 @@ def _resolve(robot, uri: str) -> Path:
         if "://" in uri and not uri.startswith("file://"):
             raise MeshProblem("format", f"mesh '{uri}': only package://, file:// and relative "
                                         "paths are supported")
+        found_by = _found_by_xacro(robot, uri)
+        if found_by is not None:
+            return _raised(_in_package(uri, *found_by))
         located = robot.resolver.locate_uri(uri, robot.base_dir)
         found = _doubted(uri, _checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
                                        None), located, os.fspath(robot.base_dir))
         found = _from_cwd(robot, uri, os.fspath(located.path), found)
+    return _raised(found)
+
+
+def _raised(found: Path | MeshProblem) -> Path:
     if isinstance(found, MeshProblem):
         raise replace(found)  # a new one: raised once per robot
     return found
+
+
+def _found_by_xacro(robot, uri: str) -> tuple[str, str, str] | None:
+    """The package, its folder and the path below it of a ``file://`` mesh below a package
+    the robot's resolver found when the robot's xacro files write ``$(find NAME)`` of that
+    package (uuv_simulator's ``file://$(find uuv_sensor_ros_plugins)/meshes/dvl.dae``, used
+    by the robots of eca_a9 and rexrov2, other repositories): xacro writes where the package
+    is on the machine it runs on, on any machine, as ``package://NAME/...`` names it; so it
+    is read and checked as that package's file. None otherwise (an absolute path written as
+    such names one machine's files: outside the repository)."""
+    if not uri.startswith("file://") or not robot.from_xacro:
+        return None
+    path = uri[len("file://"):]
+    below = robot.resolver.package_at(path) if os.path.isabs(path) else None
+    if below is None:
+        return None
+    name, folder = below
+    find = re.compile(rb"\$\(find\s+" + re.escape(name.encode()) + rb"\s*\)")
+    if not any(find.search(data) for data in robot.sources.values()):
+        return None
+    tail = Path(os.path.relpath(os.path.abspath(path), folder)).as_posix()
+    return name, os.fspath(folder), tail
 
 
 def _from_cwd(robot, uri: str, path: str, found: Path | MeshProblem) -> Path | MeshProblem:

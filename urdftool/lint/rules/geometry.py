@@ -444,6 +444,10 @@ def mesh_outside_root(robot):
     path works on one computer only. A **warning** for a file of a ROS distribution's install
     (``/opt/ros/DISTRO/share/PACKAGE/...``, as a generator writes it): it is there wherever
     that distribution and package are installed; ``package://PACKAGE/...`` says so anywhere.
+    A ``file://`` path xacro made with ``$(find PACKAGE)`` names where that package is on the
+    machine xacro runs on, on every machine, as ``package://PACKAGE/...`` does: it is read
+    as that package's file (found by ``--package`` or the package path, outside the
+    repository too), and is U409 only when it leaves the package.
 
     Bad: ``<mesh filename="file:///home/me/meshes/base.stl"/>``, ``filename="../../../x.stl"``
     Good: ``<mesh filename="package://my_robot/meshes/base.stl"/>``
