@@ -396,7 +396,7 @@ def _limits(joint) -> tuple[float, float] | None:
 def _expected_axis(robot, left, found, pair) -> mat3.Vector | None:
     """The right joint's axis that moves it as the mirror image of the left one (or, for a
     copy, as the left one carried over) for the same value."""
-    a_left = world_axis(robot, left)
+    a_left = _world_axis(robot, left)
     if a_left is None:
         return None
     if pair is not None and pair.kind == "copy":
@@ -404,6 +404,15 @@ def _expected_axis(robot, left, found, pair) -> mat3.Vector | None:
     reflected = found.reflect_vector(a_left)
     # a rotation's axis is an axial vector: its mirror image turns the other way
     return reflected if left.get("type") == "prismatic" else tuple(-v for v in reflected)
+
+
+def _world_axis(robot, joint) -> mat3.Vector | None:
+    """:func:`~urdftool.physics.frames.world_axis`, once per robot and joint (U219 and U220
+    ask each joint of a pair for it under every reading of the pair)."""
+    known = robot.memo(_world_axis, dict)
+    if joint not in known:
+        known[joint] = world_axis(robot, joint)
+    return known[joint]
 
 
 def _relations(robot, left, right, found, pair) -> list[tuple[str, float]]:
@@ -420,7 +429,7 @@ def _axis_relation(robot, left, right, found, pair=None) -> tuple[str, float] | 
     """("same", angle) when the right axis moves the right joint as the mirror image of the
     left one (or its copy) for the same value, ("negated", angle) when for the opposite value,
     and the angle to the nearer of the two [rad]; None when an axis cannot be read."""
-    mirrored, a_right = _expected_axis(robot, left, found, pair), world_axis(robot, right)
+    mirrored, a_right = _expected_axis(robot, left, found, pair), _world_axis(robot, right)
     if mirrored is None or a_right is None:
         return None
     cosine = max(-1.0, min(1.0, mat3.dot(mirrored, a_right)))
