@@ -417,7 +417,15 @@ def _world_axis(robot, joint) -> mat3.Vector | None:
 
 def _relations(robot, left, right, found, pair) -> list[tuple[str, float]]:
     """:func:`_axis_relation` under each reading the pair allows: a mirror image, and a copy
-    when it is one or may be one (``copy_turn``)."""
+    when it is one or may be one (``copy_turn``); once per robot and pair (U219 and U220 both
+    ask, of the plane and the pair the one analysis gives). The list is shared: read it."""
+    known = robot.memo(_relations, dict)
+    if (left, right) not in known:
+        known[(left, right)] = _find_relations(robot, left, right, found, pair)
+    return known[(left, right)]
+
+
+def _find_relations(robot, left, right, found, pair) -> list[tuple[str, float]]:
     readings = [pair]
     if pair is not None and pair.kind != "copy" and pair.copy_turn is not None:
         readings.append(_Pair("copy", pair.residual, pair.copy_turn))
@@ -512,12 +520,13 @@ def mirror_limits(robot):
 
 def _limit_findings(robot, left, right, found, pair):
     """One finding per pair: every limit that differs, in one message."""
-    if left.find("mimic") is not None or right.find("mimic") is not None:
+    if robot.child(left, "mimic") is not None or robot.child(right, "mimic") is not None:
         return  # a mimic joint goes where its source and multiplier take it, not its limits
     differences = []
+    limit_a, limit_b = robot.child(left, "limit"), robot.child(right, "limit")
     for attribute in ("effort", "velocity"):
-        a = attribute_number(left.find("limit"), attribute) if left.find("limit") is not None else None
-        b = attribute_number(right.find("limit"), attribute) if right.find("limit") is not None else None
+        a = attribute_number(limit_a, attribute) if limit_a is not None else None
+        b = attribute_number(limit_b, attribute) if limit_b is not None else None
         if a is not None and b is not None and not _near(a, b, 1e-9, 0.01):
             slip = decimal_slip(a, b)
             differences.append(f"{attribute} {a:g} and {b:g}"
