@@ -591,10 +591,9 @@ def mirror_inertial(robot):
         a, b = declared_of(robot, robot.links[left]), declared_of(robot, robot.links[right])
         if a is None or b is None or not (a.mass > 0 or b.mass > 0):
             continue
-        where = _located(robot, robot.links[left].find("inertial"),
-                         robot.links[right].find("inertial"))
         names = f"links '{left}' and '{right}'"
         if not _near(a.mass, b.mass, 0.0, MASS_TOLERANCE):
+            where = _inertial_place(robot, left, right)
             yield where, (f"{names}: masses differ ({a.mass:g} and {b.mass:g} kg, "
                           f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)"
                           + (decimal_slip(a.mass, b.mass) or _CONDITION))
@@ -605,9 +604,16 @@ def mirror_inertial(robot):
         if not smallest > ZERO_SIDE * largest:
             continue  # a zero tensor on one side: U304's finding
         if any(abs(x - y) > INERTIA_TOLERANCE * largest for x, y in zip(moments_a, moments_b)):
+            where = _inertial_place(robot, left, right)
             yield where, (f"{names}: principal moments of inertia differ "
                           f"({', '.join(f'{number(m, 3)}' for m in moments_a)} and "
                           f"{', '.join(f'{number(m, 3)}' for m in moments_b)} kg m^2){_CONDITION}")
+
+
+def _inertial_place(robot, left: str, right: str):
+    """Where U221 reports a pair: the later of the two links' inertials (looked for only when
+    there is a finding: the index of a ``<robot>`` child is a walk over its siblings)."""
+    return _located(robot, robot.links[left].find("inertial"), robot.links[right].find("inertial"))
 
 
 def _servo_ids(robot) -> dict[str, tuple[int, object]]:
