@@ -18,6 +18,7 @@ Its normal points to the left side. Pure Python (:mod:`urdftool.physics.mat3`).
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from dataclasses import dataclass
@@ -45,9 +46,12 @@ def _side_words(name: str, strong: bool = False) -> list[tuple[int, int, str]]:
     return [word for word in words if word not in weak] if strong and weak else words
 
 
+@functools.lru_cache(maxsize=4096)
 def _marked_side_words(name: str) -> tuple[list[tuple[int, int, str]], list]:
     """(every side word of ``name`` as :func:`_side_words` gives them, the weak ones among
-    them): one pass of the pattern for both lists."""
+    them): one pass of the pattern for both lists; once per name (the pairs of a robot ask
+    each name two or three times, the variants of one robot in a run the same names again).
+    The lists are shared: read them, never change them."""
     found, weak = [], []
     if _SIDE_LETTERS.isdisjoint(name):  # (every side word holds one: most joint names none)
         return found, weak
