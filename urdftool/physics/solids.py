@@ -1082,6 +1082,13 @@ def rigid_group(robot, name: str) -> list[str]:
     return order
 
 
+def rigid_root(robot, name: str) -> str:
+    """The root of link ``name``'s rigid body (:func:`_bodies`: the same link for every member),
+    ``name`` itself when no link is fixed to it: a key for what is asked once per body."""
+    found = _bodies(robot).get(name)
+    return name if found is None else found[0]
+
+
 def rigid_declared(robot, name: str, tensors: dict | None = None) -> mp.Body | None:
     """The declared inertials of link ``name``'s rigid body (it and every link joined to it by
     fixed joints, either way) as one body in ``name``'s frame, as Gazebo, MuJoCo and Pinocchio

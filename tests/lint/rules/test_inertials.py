@@ -742,3 +742,28 @@ def test_a_welded_link_s_tensor_is_negligible_only_against_a_body_not_itself_a_p
     _, findings = check_folder(tmp_path, {"robot.urdf": robot("300")}, select=("U310",))
     camera = [f for f in findings if "'camera'" in f.message]
     assert [f.severity for f in camera] == [Severity.WARNING], [f.message for f in findings]
+
+
+def test_a_welded_body_is_measured_once_for_all_its_noted_links(tmp_path, monkeypatch):
+    # U310's note for welded links reads the rigid body's inertia: once per body, not once per
+    # link (a body of thousands of welded links, each asking it, was quadratic)
+    from urdftool.diagnostics import Severity
+    from urdftool.physics import solids
+
+    calls = []
+    measure = solids.rigid_declared
+    monkeypatch.setattr(solids, "rigid_declared",
+                        lambda *args, **kwargs: calls.append(args[1]) or measure(*args, **kwargs))
+    parts = "".join(f"""<joint name="c{i}" type="fixed"><parent link="base_link"/>
+        <child link="cam{i}"/><origin xyz="0.2 0 {0.01 * i}"/></joint>
+      <link name="cam{i}"><inertial><mass value="0.01"/><inertia ixx="0.001" ixy="0" ixz="0"
+        iyy="0.001" iyz="0" izz="0.001"/></inertial>
+        <collision><geometry><box size="0.03 0.1 0.03"/></geometry></collision></link>"""
+                    for i in range(30))
+    text = f"""<robot name="r"><link name="base_link"><inertial><mass value="20"/>
+      <inertia ixx="0.333" ixy="0" ixz="0" iyy="0.483" iyz="0" izz="0.683"/></inertial>
+      <collision><geometry><box size="0.5 0.4 0.2"/></geometry></collision></link>{parts}</robot>"""
+    _, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U310",))
+    noted = [f for f in findings if f.severity == Severity.INFO and "negligible" in f.message]
+    assert len(noted) == 30, [f.message for f in findings]
+    assert len(calls) <= 2, len(calls)

@@ -793,16 +793,11 @@ def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
     MuJoCo lump them, Pinocchio merges them into the parent, Bullet and Drake sum them in the
     composite), so only the body's tensor matters, and this link's error is lost in it."""
     name = _name(link)
-    members = solids.rigid_group(robot, name)
-    if len(members) < 2:
+    members, body, measured, by_mass = robot.memo_for(
+        _negligible_where_fixed, solids.rigid_root(robot, name),
+        lambda: _welded_body(robot, solids.rigid_root(robot, name)))
+    if len(members) < 2 or body is None:
         return None
-    body = solids.rigid_declared(robot, name)
-    if body is None:
-        return None
-    # the body again with every measured link's tensor its geometry's: a body whose declared
-    # tensors are too large (a parent's placeholder, the welded links' own) hides nothing
-    measured = solids.rigid_declared(robot, name, {
-        _name(other): computed.inertia for other, _, _, computed, _ in _inertia_ratios(robot)})
     # the most the tensor's error turns the body's inertia about any axis, against the
     # body's least moment either way: under FIXED_SHARE of it about every axis
     error = tuple(tuple(e - d for e, d in zip(row, declared))
@@ -812,11 +807,7 @@ def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
     if not least > 0 or max(abs(v) for v in mat3.eigvalsh(error)) >= FIXED_SHARE * least \
             or properties.mass >= FIXED_SHARE * body.mass:
         return None  # (a link of a hundredth of the body's mass or more: its own part)
-    def mass(member: str) -> float:
-        declared = declared_of(robot, robot.links[member]) if member in robot.links else None
-        return declared.mass if declared is not None and math.isfinite(declared.mass) else 0.0
-
-    heaviest = max((m for m in members if m != name), key=mass)
+    heaviest = next(member for member in by_mass if member != name)
     others = f" and {len(members) - 2} more" if len(members) > 2 else ""
     return (f"negligible where it is: fixed joints make '{name}' one body with '{heaviest}'"
             f"{others} ({number(body.mass, 3)} kg, of which it is under "
@@ -824,6 +815,27 @@ def _negligible_where_fixed(robot, link, properties, expected) -> str | None:
             f"{number(whole, 3)} kg m^2) this tensor changes by under "
             f"{number(FIXED_SHARE * 100, places=0)} % about any axis, and simulators move that "
             "body as one")
+
+
+def _welded_body(robot, root: str) -> tuple:
+    """Link ``root``'s rigid body, once for all its links (a 5,000-link body asked it of each
+    link: quadratic): its members; its declared inertials as one body; the same with every
+    measured link's tensor its geometry's (a body whose declared tensors are too large, a
+    parent's placeholder or the welded links' own, hides nothing); its members heaviest first
+    (ties in the walk's order). In the root's frame: only what no rigid motion changes is read
+    from them (masses, traces and principal moments about the centre of mass)."""
+    def mass(member: str) -> float:
+        declared = declared_of(robot, robot.links[member]) if member in robot.links else None
+        return declared.mass if declared is not None and math.isfinite(declared.mass) else 0.0
+
+    members = solids.rigid_group(robot, root)
+    if len(members) < 2:
+        return members, None, None, members
+    measured = {_name(other): computed.inertia
+                for other, _, _, computed, _ in _inertia_ratios(robot)}
+    return (members, solids.rigid_declared(robot, root),
+            solids.rigid_declared(robot, root, measured),
+            sorted(members, key=mass, reverse=True))
 
 
 def _drawn_bound(robot, link, properties, solid) -> float | None:
