@@ -98,7 +98,7 @@ def _found_by_xacro(robot, uri: str) -> tuple[str, str, str] | None:
     if below is None:
         return None
     name, folder = below
-    find = re.compile(rb"\$\(find\s+" + re.escape(name.encode()) + rb"\s*\)")
+    find = re.compile(rb"\$\(find\s+" + re.escape(os.fsencode(name)) + rb"\s*\)")
     if not any(find.search(data) for data in robot.sources.values()):
         return None
     tail = Path(os.path.relpath(os.path.abspath(path), folder)).as_posix()
