@@ -206,3 +206,35 @@ def test_a_scene_of_many_primitives_is_built_without_hashing_the_graph_per_link(
     assert len(nodes) == (200 if collision else 400) and "l3" not in nodes
     np.testing.assert_allclose(posed_scene.frames["l5"][:3, 3], [0.01, 0, 0])
     np.testing.assert_allclose(posed_scene.frames["l199"], np.eye(4))
+
+
+@pytest.mark.parametrize("collision", [False, True])
+@pytest.mark.parametrize("name", ["humanoid/humanoid.urdf.xacro", "r2d2/r2d2.urdf.xacro",
+                                  "diffbot/diffbot.urdf.xacro"])
+def test_the_scene_graph_is_the_one_yourdfpy_builds(name, collision):
+    """yourdfpy is the oracle of :func:`_scene_graph` (urdftool builds the same scene in time
+    linear in the links): each geometry hangs from the same link, with the same triangles and
+    the same place in the robot's frame."""
+    import yourdfpy
+
+    from urdftool.kinematics.scene import _contained, _yourdfpy
+
+    robot = load(ROBOTS / name)
+    ours = _yourdfpy(robot, collision)
+    theirs = yourdfpy.URDF(ours.robot, build_scene_graph=not collision,
+                           build_collision_scene_graph=collision, load_meshes=False,
+                           load_collision_meshes=False,
+                           filename_handler=lambda fname: _contained(robot, fname))
+
+    def drawn(scene):
+        found = []
+        for node in scene.graph.nodes_geometry:
+            transform, geometry = scene.graph.get(node)
+            found.append((scene.graph.transforms.parents[node],
+                          len(scene.geometry[geometry].faces),
+                          tuple(np.round(transform, 9).ravel())))
+        return sorted(found)
+
+    scenes = (ours.collision_scene, theirs.collision_scene) if collision else \
+        (ours.scene, theirs.scene)
+    assert drawn(scenes[0]) == drawn(scenes[1]) != []
