@@ -15,6 +15,8 @@ A place (U218) that differs, or an axis tilted less than 45 degrees from its mir
 (vendors' left and right hand models, asymmetric mountings, sensors placed by design), where
 limits (U220) and inertials (U221) that differ were slips in a third of their rows (one side
 not updated, a decimal point), and an axis along another direction was one (MuR620's lifts).
+Of the inertials, every slip was 1.5 times apart or more; under that (two sides' CAD parts of
+one design, 5 to 40 % apart) U221 is a note.
 
 Nothing is said when fewer than two pairs agree with the plane they give (a robot whose sides
 are not mirror images by design: two identical arms turned 180 degrees apart, say), and each
@@ -41,9 +43,16 @@ RELATIVE_POSITION = 0.01  # and 1 % of the distance from the plane (big robots r
 AXIS_TOLERANCE = math.radians(2.0)
 TURNED = math.radians(45.0)  # an axis this far from its mirror image is another axis (U219)
 LIMIT_TOLERANCE = 1e-3  # [rad or m] absolute, and 1 % of the range
+STOPS_APART = 0.10  # of the range: the stops of two sides of one design differ by up to 6 % of
+# it (Nao's ankle and hip rolls, Spot's hips, Poppy's shoulders, the Pi+'s thighs); every range
+# judged a slip in the sweep was 16 % or more from the mirror image's (a negated or copied range)
 MASS_TOLERANCE = 0.05  # relative: left and right parts differ by cables and screws, not 5 %
 INERTIA_TOLERANCE = 0.10  # relative, on the principal moments (a tensor is rounded harder)
 ZERO_SIDE = 1e-6  # a side whose largest moment is this small against the other's has none
+SLIP_RATIO = 1.5  # one side's mass or a principal moment half as large again as the other's:
+# every inertial slip judged in the sweep was (a value from another part, a decimal point, a
+# placeholder tensor: 1.57 to 200 times); the CAD parts of two sides of one design differ by up
+# to 1.4 times (Nao's pelvis, iCub's shoulders, HSR's fingers), a note naming the condition
 AGREEING = 2  # pairs that must agree with the plane before any position is judged
 # what the user knows and the file does not say (U220, U221: a slip in a third of the sweep's rows)
 _CONDITION = ", if the two sides are built as mirror images"
@@ -510,6 +519,13 @@ def mirror_limits(robot):
     one side. Within 1e-3 (and 1 % of the range). Mimic joints are not judged: a mimic joint
     goes where its source and multiplier take it (U216 checks that against its limits).
 
+    A range whose stops are less than 10 % of it from the mirror image's, with effort and
+    velocity agreeing, is a **note** saying "if the two sides are built as mirror images":
+    the stops of two sides of one design differ that much (Nao's documented ankle and hip
+    rolls, about a degree; Spot's hips, 0.05 rad), where every range judged a slip in the real
+    sweep was 16 % of it or more away (a range negated once too often, one copied from
+    another joint).
+
     Bad: ``l_sho_roll`` ``[-0.5, 1.7]`` and ``r_sho_roll`` ``[-0.5, 1.7]`` about the same
     axis (the right arm can only swing inwards)
     Good: ``r_sho_roll`` ``[-1.7, 0.5]``
@@ -519,7 +535,8 @@ def mirror_limits(robot):
 
 
 def _limit_findings(robot, left, right, found, pair):
-    """One finding per pair: every limit that differs, in one message."""
+    """One finding per pair: every limit that differs, in one message; a note when only the
+    range differs, by stops less than 10 % of it from the mirror image's (:data:`STOPS_APART`)."""
     if robot.child(left, "mimic") is not None or robot.child(right, "mimic") is not None:
         return  # a mimic joint goes where its source and multiplier take it, not its limits
     differences = []
@@ -531,16 +548,23 @@ def _limit_findings(robot, left, right, found, pair):
             slip = decimal_slip(a, b)
             differences.append(f"{attribute} {a:g} and {b:g}"
                                + (f" ({slip[2:]})" if slip else ""))
-    range_text = _range_difference(robot, left, right, found, pair)
-    if range_text:
-        differences.insert(0, range_text)
+    ranged = _range_difference(robot, left, right, found, pair)
+    near = ranged is not None and not differences and ranged[1] < STOPS_APART
+    if ranged is not None:
+        differences.insert(0, ranged[0])
     if differences:
+        condition = f"{_CONDITION} (stops {number(100 * ranged[1], places=0)} % of the range " \
+            "from the mirror image's, as side-specific stops can be)" if near else _CONDITION
         yield _located(robot, left, right), (
             f"joints '{left.get('name')}' and '{right.get('name')}' have limits that are not "
-            f"mirror images: {'; '.join(differences)}{_CONDITION}")
+            f"mirror images: {'; '.join(differences)}{condition}"), None, \
+            Severity.INFO if near else Severity.WARNING
 
 
-def _range_difference(robot, left, right, found, pair) -> str | None:
+def _range_difference(robot, left, right, found, pair) -> tuple[str, float] | None:
+    """(what differs, how far): the ranges' difference said, and the farthest stop of the right
+    range from the nearest mirror image of the left one the axes allow, over the larger span
+    (1 when a range is empty against one that is not); None when they agree."""
     if left.get("type") == "continuous":
         return None
     a, b = _limits(left), _limits(right)
@@ -554,16 +578,20 @@ def _range_difference(robot, left, right, found, pair) -> str | None:
                   for x, y in zip(_mirrored_limits(*a), b))
     if any(equal if kind == "same" else negated for kind, _ in readings):
         return None
+    apart = min(max(abs(x - y) for x, y in zip(a if kind == "same" else _mirrored_limits(*a), b))
+                for kind, _ in readings)
+    apart = min(1.0, apart / span) if span > 0 else 1.0
     kind = readings[0][0]
     text = f"range [{number(a[0], 4)}, {number(a[1], 4)}] and [{number(b[0], 4)}, {number(b[1], 4)}]"
-    if kind == "same" and negated or kind == "negated" and equal:
+    if (kind == "same" and negated or kind == "negated" and equal) and apart >= STOPS_APART:
         how = ("move both sides as mirror images for the same value, so the ranges should be "
                "equal" if kind == "same" else "move both sides the same way for the same "
                "value, so the ranges should be negated and swapped")
         return (f"{text} are {'negated' if negated else 'equal'}, but their axes {how}: an "
-                "axis or a range's sign was flipped on one side only")
+                "axis or a range's sign was flipped on one side only"), apart
     expected = a if kind == "same" else _mirrored_limits(*a)
-    return f"{text} (with these axes the right would be [{number(expected[0], 4)}, {number(expected[1], 4)}])"
+    return (f"{text} (with these axes the right would be [{number(expected[0], 4)}, "
+            f"{number(expected[1], 4)}])"), apart
 
 
 @rule("U221", "mirror-inertial", Severity.WARNING)
@@ -576,6 +604,12 @@ def mirror_inertial(robot):
     copied from another part or typed on one side only. Centres of mass are not compared: a
     copied part's is not at its partner's mirror image, and both are right. A zero tensor on
     one side is U304's finding; links without an inertial on either side are U303's.
+
+    A warning when one side's mass or a principal moment is 1.5 times the other's or more (every
+    slip judged in the real sweep was: a value from another part, a decimal point, a placeholder
+    tensor); a **note** saying "if the two sides are built as mirror images" below that, where
+    the CAD parts of two sides of one design also differ (Nao's pelvis links, iCub's shoulders,
+    HSR's fingers: up to 1.4 times, none a slip anyone could name from the files).
 
     Two masses of the same digits a power of ten apart (0.0070309794 and 0.070309794 kg, as
     ROBOTIS-OP's tibias) are said to be a decimal point slipped.
@@ -592,22 +626,45 @@ def mirror_inertial(robot):
         if a is None or b is None or not (a.mass > 0 or b.mass > 0):
             continue
         names = f"links '{left}' and '{right}'"
-        if not _near(a.mass, b.mass, 0.0, MASS_TOLERANCE):
-            where = _inertial_place(robot, left, right)
-            yield where, (f"{names}: masses differ ({a.mass:g} and {b.mass:g} kg, "
-                          f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)"
-                          + (decimal_slip(a.mass, b.mass) or _CONDITION))
-            continue
         moments_a = moments_of(robot, robot.links[left])
         moments_b = moments_of(robot, robot.links[right])
         largest, smallest = sorted((max(moments_a), max(moments_b)))[::-1]
-        if not smallest > ZERO_SIDE * largest:
-            continue  # a zero tensor on one side: U304's finding
-        if any(abs(x - y) > INERTIA_TOLERANCE * largest for x, y in zip(moments_a, moments_b)):
-            where = _inertial_place(robot, left, right)
-            yield where, (f"{names}: principal moments of inertia differ "
-                          f"({', '.join(f'{number(m, 3)}' for m in moments_a)} and "
-                          f"{', '.join(f'{number(m, 3)}' for m in moments_b)} kg m^2){_CONDITION}")
+        # a zero tensor on one side is U304's finding: its moments are not compared
+        differing = [(x, y) for x, y in zip(moments_a, moments_b)
+                     if abs(x - y) > INERTIA_TOLERANCE * largest] \
+            if smallest > ZERO_SIDE * largest else []
+        moments = (f"principal moments of inertia differ "
+                   f"({', '.join(f'{number(m, 3)}' for m in moments_a)} and "
+                   f"{', '.join(f'{number(m, 3)}' for m in moments_b)} kg m^2)")
+        strong_moments = any(_ratio(x, y) >= SLIP_RATIO for x, y in differing)
+        if not _near(a.mass, b.mass, 0.0, MASS_TOLERANCE):
+            slip = decimal_slip(a.mass, b.mass)
+            strong = bool(slip) or _ratio(a.mass, b.mass) >= SLIP_RATIO or strong_moments
+            yield _inertial_place(robot, left, right), (
+                f"{names}: masses differ ({a.mass:g} and {b.mass:g} kg, "
+                f"{number(100 * abs(a.mass - b.mass) / max(a.mass, b.mass), places=0)} %)"
+                + (f", {moments}" if strong_moments and not slip else "")
+                + (slip or _condition(strong))), None, _severity(strong)
+        elif differing:
+            yield _inertial_place(robot, left, right), \
+                f"{names}: {moments}{_condition(strong_moments)}", None, _severity(strong_moments)
+
+
+def _ratio(a: float, b: float) -> float:
+    """The larger of two values over the smaller (infinite when the smaller is not positive)."""
+    small, large = sorted((a, b))
+    return large / small if small > 0 else math.inf
+
+
+def _condition(strong: bool) -> str:
+    """U221's condition: said as it is for a difference of 1.5 times or more, and with the
+    CAD's latitude below it (a note)."""
+    return _CONDITION if strong else \
+        f"{_CONDITION} (under {SLIP_RATIO:g} times apart, as two sides' CAD parts can be)"
+
+
+def _severity(strong: bool) -> Severity:
+    return Severity.WARNING if strong else Severity.INFO
 
 
 def _inertial_place(robot, left: str, right: str):
