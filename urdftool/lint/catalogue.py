@@ -138,8 +138,8 @@ class Rule(Frozen):
                            self.target, not_checked, repeated)
         repeated = tuple(dict.fromkeys(tuple(repeated) + getattr(message, "repeated", ())))
         if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
-            raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
-                             f"more severe ({Severity(severity).value})")
+            raise ValueError(f"{self.code}'s severity is {self.severity.value}; a finding of it "
+                             f"cannot be more severe ({Severity(severity).value})")
         if severity is None and isinstance(message, Conditional):
             severity = min(self.severity, message.severity, key=_RANK.__getitem__)
         return Finding(self.code, self.name, Severity(severity or self.severity), str(message),
