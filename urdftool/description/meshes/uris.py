@@ -72,7 +72,8 @@ def _resolve(robot, uri: str) -> Path:
             return _raised(_in_package(uri, *found_by))
         located = robot.resolver.locate_uri(uri, robot.base_dir)
         found = _doubted(uri, _checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
-                                       None), located, os.fspath(robot.base_dir))
+                                       None, bool(located.doubt)),
+                         located, os.fspath(robot.base_dir))
         found = _from_cwd(robot, uri, os.fspath(located.path), found)
     return _raised(found)
 
@@ -233,7 +234,8 @@ def _in_package(uri: str, package: str, folder: str, tail: str) -> Path | MeshPr
     folder gets the same answer."""
     located = installed(package, Path(folder), Path(folder) / tail)
     return _doubted(uri, _checked(uri, os.fspath(located.path), os.fspath(located.within),
-                                  package), located, os.fspath(located.within))
+                                  package, bool(located.doubt)),
+                    located, os.fspath(located.within))
 
 
 def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | MeshProblem:
@@ -248,9 +250,8 @@ def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | 
     windows = _windows_path(uri, path)
     said = found.message + windows
     hint = "" if windows else _elsewhere(_real(Path(path)), base)
-    if located.doubt:
-        return MeshProblem("missing", f"{said}: not found in the source tree; "
-                                      f"{located.doubt}{hint}", certain=False)
+    if located.doubt:  # (said "not found in the source tree": _checked)
+        return MeshProblem("missing", f"{said}; {located.doubt}{hint}", certain=False)
     kept = _kept_empty(os.path.dirname(path))
     if kept:
         return MeshProblem("missing", f"{said}{hint}: not certain: its folder holds only "
@@ -275,11 +276,13 @@ def _kept_empty(folder: str) -> str:
 
 
 @per_run
-def _checked(uri: str, named: str, base: str, package: str | None) -> Path | MeshProblem:
+def _checked(uri: str, named: str, base: str, package: str | None,
+             built: bool = False) -> Path | MeshProblem:
     """The path ``named`` for mesh ``uri`` with its links followed, when it stays in package
     ``package``'s folder ``base`` (or, for ``package`` None, in the containment root of the
     robot's folder ``base``) and is a file with a mesh extension; else the MeshProblem.
-    Once per run: robots of one package name the same meshes."""
+    ``built``: the package's build may put a file there (a file missing is "not found in the
+    source tree"). Once per run: robots of one package name the same meshes."""
     path = _real(Path(named))
     if package is not None:
         folder = _real(Path(base))
@@ -314,7 +317,8 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
         why = no_file_there(path)
         if why.startswith("is "):  # something is there, not a mesh file: never opened
             return MeshProblem("corrupt", f"mesh '{uri}' {why}, not a file{looked}: not opened")
-        found = "not found" if why == "does not exist" else why
+        found = ("not found in the source tree" if built else "not found") \
+            if why == "does not exist" else why
         return MeshProblem("missing", f"mesh '{uri}' {found}{looked}")  # (advice: _doubted)
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
