@@ -414,22 +414,35 @@ def _also(group: list, named: list | None = None) -> str:
     if not differ:
         return ""  # (the same names)
     quoted = [i for i in differ if first[i][0] == "'"]
-    held = {i for i in quoted if any(_holds(named, h, i) for h in quoted if h != i)}
+    held = {i for i in quoted if any(_holds(named, h, i) and not (
+        _holds(named, i, h) and (len(first[i]), -i) > (len(first[h]), -h))
+        for h in quoted if h != i)}  # (of two that hold each other, the longer, else the first)
     differ = [i for i in differ if i not in held]
     at, with_it = differ[0], [i for i in differ[1:] if first[i][:2] != "</" and first[i][0] in "<'"]
-    said = {names[at]: tuple(names[i] for i in with_it) for names in reversed(named)}
-    others = [name + (f" ({', '.join(said[name])})" if with_it else "")
-              for name in dict.fromkeys(names[at] for names in named) if name != first[at]]
+    mine = (first[at], *(first[i] for i in with_it))  # (a link's second mesh is another's)
+    others = [said[0] + (f" ({', '.join(said[1:])})" if with_it else "") for said in
+              dict.fromkeys((names[at], *(names[i] for i in with_it)) for names in named)
+              if said != mine]
     if len(group) > _NAMES_READ:  # (how many in all is not known)
         return f"; also {', '.join(others[:LISTED])}, ..."
     return f"; also {_listed(others)}"
 
 
 def _holds(named: list[tuple], holder: int, i: int) -> bool:
-    """Whether each finding's name at ``holder`` holds its name at ``i`` (of two characters
-    or more), in one pattern for all (:func:`_shape`): the name at ``i`` is read from it."""
-    return all(len(names[i]) > 3 and names[i][1:-1] in names[holder] for names in named) and \
-        len({_shape(names, i, holder) for names in named}) == 1
+    """Whether the name at ``i`` is read from the name at ``holder`` in one pattern for all,
+    as the group's line shows it for its first finding: each finding's name at ``holder``
+    holds its name at ``i`` (of two characters or more: :func:`_shape`), or its name at ``i``
+    holds the part of its name at ``holder`` that differs among them (three characters or
+    more: 'package://p/meshes/{}.STL' written for 'package://q/meshes/{}.STL')."""
+    if all(len(names[i]) > 3 and names[i][1:-1] in names[holder] for names in named) and \
+            len({_shape(names, i, holder) for names in named}) == 1:
+        return True
+    written = [names[holder] for names in named]
+    start = len(os.path.commonprefix(written))
+    end = len(os.path.commonprefix([name[start:][::-1] for name in written]))
+    parts = [name[start:len(name) - end] for name in written]
+    return all(len(part) > 2 and part in names[i] for part, names in zip(parts, named)) and \
+        len({names[i].replace(part, "{}", 1) for part, names in zip(parts, named)}) == 1
 
 
 def _listed(items: list[str]) -> str:
