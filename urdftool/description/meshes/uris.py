@@ -310,7 +310,7 @@ def _checked(uri: str, named: str, base: str, package: str | None,
                     certain=False)
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
-                f"repository: {_as_package_uri(written)}{_rooted_by_mistake(named, base)}"))
+                f"repository: {_rooted_by_mistake(named, base) or _as_package_uri(written)}"))
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
         looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
@@ -347,12 +347,13 @@ _INSTALLED_SHARE = re.compile(r".*/share/([^/]+)/([^/].*)")
 def _rooted_by_mistake(named: str, base: str) -> str:
     """Advice for an absolute path that, read without its leading '/', names a file beside the
     robot (an exporter's ``/meshes/base_link.stl`` for ``meshes/base_link.stl``: Blind-Us'
-    Tancho_URDF, from StackForce SimReady); "" otherwise."""
+    Tancho_URDF, from StackForce SimReady), said instead of how to name another package's
+    file (:func:`_as_package_uri`), which it is not; "" otherwise."""
     relative = named.lstrip("/")
     if named == relative or ".." in relative.split("/") or \
             kind_of(Path(base) / relative) != "file":
         return ""
-    return (f"; the leading '/' makes it absolute: '{relative}', relative to the robot's "
+    return (f"the leading '/' makes it absolute: '{relative}', relative to the robot's "
             "folder, is there")
 
 
