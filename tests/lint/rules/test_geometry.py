@@ -511,3 +511,23 @@ def test_a_mesh_not_found_where_the_build_may_put_it_says_not_found_once():
     assert said.count("not found") == 1, said
     assert " not found in the source tree (looked at " in said and \
         "); the package's install rules could not be read (CMakeLists.txt:5: " in said, said
+
+
+def test_every_mesh_rule_names_the_mesh_as_the_file_writes_it(tmp_path):
+    """ICube's iiwa_ros2, read as a stranger: U408 quoted the mesh as the xacro writes it
+    ('file://$(find iiwa_description)/...', expanded as detail), U416 on the next line as
+    expanded only ('file:///work/...'), a path no file of the user's says. One owner
+    (geometry._mesh_named) begins every mesh rule's message."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / "open.stl").write_text("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                                       "vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+                                       "endsolid x\n")
+    (tmp_path / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:property name="part" value="open.stl"/><link name="a">'
+        '<collision><geometry><mesh filename="${part}"/></geometry></collision></link></robot>')
+    result = load_and_check(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
+    [said] = [f.message for f in result.findings if f.code == "U414"]
+    assert said.startswith("link 'a' <collision>: mesh '${part}' (expanded: 'open.stl') is not "
+                           "watertight"), said

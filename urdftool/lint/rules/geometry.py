@@ -368,6 +368,16 @@ def _problems(robot, kind: str):
                           Conditional(message, repeated=repeated))
 
 
+def _mesh_named(robot, link, holder, shape) -> str:
+    """Where a mesh finding is and which mesh, as every mesh rule's message begins: "link 'L'
+    <visual>: mesh 'WRITTEN' (expanded: 'URI')" (:func:`~urdftool.errors.mesh_quoted`)."""
+    from urdftool.errors import mesh_quoted
+
+    uri = shape.get("filename")
+    return (f"link '{link.get('name')}' <{holder.tag}>: "
+            f"{mesh_quoted(uri, _written_filename(robot, shape, uri))}")
+
+
 def _written_filename(robot, shape, uri: str) -> str:
     """The ``filename`` of mesh element ``shape`` as its file writes it (before xacro expands
     ``$(find pkg)`` or ``${prefix}``), ``uri`` when not known or not read from a xacro."""
@@ -604,7 +614,7 @@ def mesh_implausible_size(robot):
         span = _link_spans(robot).get(link.get("name"), 0.0)
         if span > 0 and factor and not span / 10 <= extent * factor <= span * 10:
             continue
-        where = f"link '{link.get('name')}' <{holder.tag}>: mesh '{shape.get('filename')}'"
+        where = _mesh_named(robot, link, holder, shape)
         if factor is None:
             yield shape, f"{where} is {number(extent)} m across; check its unit"
             continue
@@ -631,9 +641,8 @@ def mesh_not_watertight(robot):
     for link, holder, shape, outcome in _mesh_outcomes(robot):
         feeds = holder.tag == "collision" or first_child(link, "collision") is None
         if feeds and hasattr(outcome, "is_watertight") and not outcome.is_watertight:
-            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
-                          f"'{shape.get('filename')}' is not watertight; its inertia is taken "
-                          "from its convex hull")
+            yield shape, (f"{_mesh_named(robot, link, holder, shape)} is not watertight; its "
+                          "inertia is taken from its convex hull")
 
 
 @rule("U415", "empty-package-name", Severity.WARNING)
@@ -657,13 +666,13 @@ def empty_package_name(robot):
         if uri.startswith("package:///"):
             name, tail = package_uri_parts(uri)
             if not tail:  # 'package:///foot.stl': a file name, no folder to take for the package
-                yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh '{uri}' has an "
+                yield shape, (f"{_mesh_named(robot, link, holder, shape)} has an "
                               f"empty package name and no folder; Pinocchio looks '{name}' up "
                               "directly in its package directories, ROS's resource_retriever "
                               "(RViz, Gazebo, MoveIt) cannot resolve it: put the file in a "
                               f"package and write 'package://PACKAGE/{name}'")
                 continue
-            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh '{uri}' has an empty "
+            yield shape, (f"{_mesh_named(robot, link, holder, shape)} has an empty "
                           f"package name; Pinocchio (and urdftool) read it as package '{name}', "
                           "ROS's resource_retriever (RViz, Gazebo, MoveIt) cannot resolve it: "
                           f"write 'package://{name}/{tail}'")
@@ -688,7 +697,6 @@ def mesh_not_well_formed(robot):
     for link, holder, shape, outcome in outcomes:
         why = getattr(outcome, "metadata", {}).get(NOT_WELL_FORMED)
         if why:
-            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
-                          f"'{shape.get('filename')}' is not well-formed XML ({why}); read as "
-                          "repaired, as assimp reads it, but XML-strict readers (pycollada, "
-                          "trimesh) refuse it")
+            yield shape, (f"{_mesh_named(robot, link, holder, shape)} is not well-formed XML "
+                          f"({why}); read as repaired, as assimp reads it, but XML-strict readers "
+                          "(pycollada, trimesh) refuse it")
