@@ -723,7 +723,7 @@ def _written_from_elsewhere(session: _Session, filename: str, including: str | N
     from that folder (Upkie's ``xacro/utils/box_inertia.xacro``, for xacrodoc run from the
     repository root by its Makefile), which reads it: the failure is then not certain (a
     warning when checked). "" otherwise."""
-    from urdftool.description.packages import containment_root
+    from urdftool.description.packages import containment_root, written_from_above
 
     if not including:
         return ""
@@ -732,16 +732,14 @@ def _written_from_elsewhere(session: _Session, filename: str, including: str | N
     if not named.startswith(base + os.sep):
         return ""  # an absolute or upward path: written as meant
     written = named[len(base) + 1:]
-    root = str(containment_root(base))
-    folder = os.path.dirname(base)
-    while folder.startswith(root) and len(folder) < len(base):
-        if files.kind_of(os.path.join(folder, written)) == "file":
-            where = "the repository's root" if folder == root else f"'{display_path(folder)}'"
-            return (f" (xacro reads an include beside the file including it; '{written}' is "
-                    f"there from {where}, as a tool run from that folder reads it: write the "
-                    "path from the including file, or $(find PKG)/...)")
-        base, folder = folder, os.path.dirname(folder)
-    return ""
+    folder = written_from_above(base, written, above=True)
+    if folder is None:
+        return ""
+    where = "the repository's root" if folder == os.fspath(containment_root(Path(base))) \
+        else f"'{display_path(folder)}'"
+    return (f" (xacro reads an include beside the file including it; '{written}' is there "
+            f"from {where}, as a tool run from that folder reads it: write the path from the "
+            "including file, or $(find PKG)/...)")
 
 
 class _Unreadable(OSError):
@@ -826,20 +824,15 @@ def _from_cwd(session: _Session, filename: str, error: OSError,
             return None
     except OSError:
         return None
-    from urdftool.description.packages import containment_root
+    from urdftool.description.packages import written_from_above
 
-    written = filename[len(here) + 1:]
-    folder = os.path.dirname(os.path.abspath(including))
-    root = str(containment_root(folder))
-    while folder.startswith(root):
-        if folder != here and files.kind_of(os.path.join(folder, written)) == "file":
-            return _Unsure(error.errno, f"{_not_read(error, filename, subject)}: written "
-                                        f"with $(cwd), the folder xacro runs from; it is there "
-                                        f"when xacro runs from '{display_path(folder)}'")
-        if folder == root:
-            break
-        folder = os.path.dirname(folder)
-    return None
+    folder = written_from_above(os.path.dirname(os.path.abspath(including)),
+                                filename[len(here) + 1:], skip=here)
+    if folder is None:
+        return None
+    return _Unsure(error.errno, f"{_not_read(error, filename, subject)}: written with $(cwd), "
+                                f"the folder xacro runs from; it is there when xacro runs from "
+                                f"'{display_path(folder)}'")
 
 
 def _unsure(session: _Session, filename: str, error: OSError, subject: str) -> _Unsure | None:

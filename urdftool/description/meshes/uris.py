@@ -20,7 +20,7 @@ from pathlib import Path
 from urdftool.description.files import (MANIFESTS_SAID, inside, kind_of, listing,
                                         no_file_there, real_path, resolved, walk)
 from urdftool.description.packages import (containment_root, declaring_package, installed,
-                                          package_of, package_uri_parts)
+                                          package_of, package_uri_parts, written_from_above)
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 from urdftool.errors import MeshProblem, PackageNotFound, similarity
@@ -118,17 +118,12 @@ def _from_cwd(robot, uri: str, path: str, found: Path | MeshProblem) -> Path | M
             or not robot.from_xacro or not path.startswith(here + os.sep) \
             or not any(b"$(cwd)" in data for data in robot.sources.values()):
         return found
-    written = path[len(here) + 1:]
-    folder, root = os.fspath(robot.base_dir), os.fspath(containment_root(robot.base_dir))
-    while inside(Path(folder), Path(root)):
-        if folder != here and kind_of(os.path.join(folder, written)) == "file":
-            return MeshProblem("missing", (
-                f"mesh '{uri}' not found: written with $(cwd), the folder xacro runs from; it "
-                f"is there when xacro runs from '{display_path(folder)}'"), certain=False)
-        if folder == root or os.path.dirname(folder) == folder:
-            break
-        folder = os.path.dirname(folder)
-    return found
+    folder = written_from_above(robot.base_dir, path[len(here) + 1:], skip=here)
+    if folder is None:
+        return found
+    return MeshProblem("missing", (
+        f"mesh '{uri}' not found: written with $(cwd), the folder xacro runs from; it is there "
+        f"when xacro runs from '{display_path(folder)}'"), certain=False)
 
 
 def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
