@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Conditional, Said, Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule, weighed
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, first_child
@@ -355,17 +355,12 @@ def _problems(robot, kind: str):
         if getattr(outcome, "kind", None) == kind:
             uri = shape.get("filename")
             said = outcome.quoting(uri, _written_filename(robot, shape, uri))
-            message = f"link '{link.get('name')}' <{holder.tag}>: {said}"
-            if kind == "package" and outcome.declared or \
-                    kind == "missing" and outcome.kept_empty:
-                # a dependency the package.xml declares, or a file the repository leaves for
-                # a tool to put in a folder kept empty: the workspace's, not the file's
-                yield shape, Conditional(message, Severity.INFO, outcome.repeated)
-                continue
-            # a problem that may not hold after the package's build: a warning saying so
-            repeated = getattr(outcome, "repeated", ())  # (a package's: where it was looked for)
-            yield shape, (Said(message, repeated) if outcome.certain else
-                          Conditional(message, repeated=repeated))
+            # a dependency the package.xml declares, or a file the repository leaves for a
+            # tool to put in a folder kept empty: the workspace's, not the file's (a note); a
+            # problem that may not hold after the package's build: a warning saying so
+            yield shape, weighed(f"link '{link.get('name')}' <{holder.tag}>: {said}",
+                                 outcome.certain, outcome.declared or outcome.kept_empty,
+                                 outcome.repeated)  # (a package's: where it was looked for)
 
 
 def _mesh_named(robot, link, holder, shape) -> str:
