@@ -779,11 +779,12 @@ def _unread_include(session: _Session, filename: str, error: OSError,
         session, filename, error, including, subject)
     if unsure:
         return unsure
-    if spec.startswith("package://"):  # a path by now, its // made one /
-        name = spec[len("package://"):].split("/", 1)[0]
-        return _Unreadable(error.errno, (
-            f"{subject}: xacro:include does not resolve package:// URIs; write "
-            f"'$(find {name}){spec[len('package://') + len(name):]}'"))
+    if "package:/" in filename:  # package://: a path by now, its // made one /
+        name, _, tail = spec.removeprefix("package://").partition("/")
+        instead = f"'$(find {name})/{tail}'" if spec.startswith("package://") else \
+            "$(find PKG)/..."
+        return _Unreadable(error.errno, f"{subject}: xacro:include does not resolve package:// "
+                                        f"URIs; write {instead}")
     said = _not_read(error, filename, subject, written=spec)
     hint = _written_from_elsewhere(session, filename, including)
     if hint:  # a tool run from that folder reads it (upkie's xacrodoc): not certain
