@@ -425,6 +425,14 @@ def package_uri_parts(uri: str) -> tuple[str, str]:
     return name, tail
 
 
+def find_form(uri: str) -> str:
+    """A ``package://NAME/PATH`` URI as xacro and launch files name the file: ``$(find
+    NAME)/PATH``, what to write where only a path is read (a xacro:include, a Gazebo plugin's
+    <parameters>)."""
+    name, tail = package_uri_parts(uri)
+    return f"$(find {name})/{tail}"
+
+
 @per_run
 def packages_below(root: Path) -> dict[str, Path]:
     """Package name -> folder of each package.xml (or manifest.xml) below ``root`` (its folders walked as

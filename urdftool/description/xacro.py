@@ -780,9 +780,9 @@ def _unread_include(session: _Session, filename: str, error: OSError,
     if unsure:
         return unsure
     if "package:/" in filename:  # package://: a path by now, its // made one /
-        name, _, tail = spec.removeprefix("package://").partition("/")
-        instead = f"'$(find {name})/{tail}'" if spec.startswith("package://") else \
-            "$(find PKG)/..."
+        from urdftool.description.packages import find_form
+
+        instead = f"'{find_form(spec)}'" if spec.startswith("package://") else "$(find PKG)/..."
         return _Unreadable(error.errno, f"{subject}: xacro:include does not resolve package:// "
                                         f"URIs; write {instead}")
     said = _not_read(error, filename, subject, written=spec)
