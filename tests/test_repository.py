@@ -59,3 +59,25 @@ def test_no_code_searches_a_list_among_the_items_before_each():
                             and right.slice.upper.id in counters:
                         found.append(f"{path.name}:{node.lineno}")
     assert not found, found
+
+
+def test_no_message_puts_an_article_before_a_word_it_computes():
+    """``f"is a {severity} rule"`` said "is a error rule": whether a word takes "a" or "an" is
+    known only once it is computed. A message names the word without an article before it
+    (``f"{code}'s severity is {severity}"``) or writes the article with the word."""
+    import ast
+
+    import urdftool
+
+    before = re.compile(r"(^|\W)(a|an) ['\"(<]?$", re.I)
+    found = []
+    for path in Path(urdftool.__file__).parent.rglob("*.py"):
+        for node in ast.walk(parsed(path.read_text(encoding="utf-8"))):
+            parts = node.values if isinstance(node, ast.JoinedStr) else \
+                [node.left, node.right] if isinstance(node, ast.BinOp) and \
+                isinstance(node.op, ast.Add) else []
+            for part, after in zip(parts, parts[1:]):
+                if isinstance(part, ast.Constant) and isinstance(part.value, str) and \
+                        before.search(part.value) and not isinstance(after, ast.Constant):
+                    found.append(f"{path.name}:{node.lineno}")
+    assert not found, found

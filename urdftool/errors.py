@@ -449,7 +449,14 @@ class MeshProblem(LocatedError):
         quoted = f"mesh '{uri}'"
         if written == uri or not self.message.startswith(quoted):
             return self.message
-        return f"mesh '{written}' (expanded: '{uri}'){self.message[len(quoted):]}"
+        return mesh_quoted(uri, written) + self.message[len(quoted):]
+
+
+def mesh_quoted(uri: str, written: str) -> str:
+    """A mesh as a message names it: ``mesh 'WRITTEN'``, as the user's file writes it (a
+    xacro's ``file://$(find pkg)/meshes/a.stl``), with ``uri`` (what the robot, expanded,
+    names) as detail when they differ."""
+    return f"mesh '{uri}'" if written == uri else f"mesh '{written}' (expanded: '{uri}')"
 
 
 class SrdfError(LocatedError):

@@ -103,8 +103,8 @@ def _kind(param) -> str:
         if not param.multiple and kind == "int range" and param.type.max is None and \
                 not param.type.min_open and not param.type.clamp:
             return f"int>={param.type.min}"
-    raise ValueError(f"{param.name}: a {param.param_type_name} of type {kind} the door cannot "
-                     "read")
+    raise ValueError(f"{param.name}: {param.param_type_name} of type {kind}, which the door "
+                     "cannot read")
 
 
 def render() -> str:

@@ -632,9 +632,11 @@ def test_an_absolute_path_meaning_a_file_beside_the_robot_says_so(tmp_path):
     with pytest.raises(MeshProblem) as error:
         resolve(_robot(tmp_path, "/meshes/base_link.stl"), "/meshes/base_link.stl")
     assert error.value.kind == "outside" and error.value.certain
-    assert str(error.value).endswith("use package://PKG/... for files of another package; the "
-                                     "leading '/' makes it absolute: 'meshes/base_link.stl', "
-                                     "relative to the robot's folder, is there")
+    # (session 21: not also "use package://PKG/... for files of another package", which the
+    # file beside it is not)
+    assert str(error.value).endswith("outside the robot's repository: the leading '/' makes it "
+                                     "absolute: 'meshes/base_link.stl', relative to the robot's "
+                                     "folder, is there"), str(error.value)
     with pytest.raises(MeshProblem) as error:
         resolve(_robot(tmp_path, "/meshes/other.stl"), "/meshes/other.stl")
     assert str(error.value).endswith("for files of another package")

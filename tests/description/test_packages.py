@@ -512,3 +512,25 @@ def test_a_launch_files_package_is_the_one_package_of_says():
             expected = None if folder is None or not str(folder).startswith(str(case)) \
                 else str(folder)
             assert holder == expected, (launch, holder, folder)
+
+
+def test_a_path_written_for_a_tool_run_from_a_folder_above_is_found_from_one_place(tmp_path):
+    """written_from_above: the one walk from a file's folder up to its repository's root
+    asking from where a relative path names a file (xacro's $(cwd) in a mesh or an include, an
+    include written from the repository's root), three walks until session 21."""
+    from urdftool.description.packages import written_from_above
+
+    (tmp_path / "repo" / ".git").mkdir(parents=True)
+    deep = tmp_path / "repo" / "pkg" / "urdf"
+    deep.mkdir(parents=True)
+    (tmp_path / "repo" / "meshes").mkdir()
+    (tmp_path / "repo" / "meshes" / "a.stl").write_text("solid a\nendsolid a\n")
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "b.stl").write_text("solid b\nendsolid b\n")
+    (deep / "meshes").mkdir()
+    (deep / "meshes" / "a.stl").write_text("solid a\nendsolid a\n")
+    assert written_from_above(deep, "meshes/a.stl") == str(deep)
+    assert written_from_above(deep, "meshes/a.stl", above=True) == str(tmp_path / "repo")
+    assert written_from_above(deep, "meshes/a.stl", skip=str(deep)) == str(tmp_path / "repo")
+    assert written_from_above(deep, "meshes/b.stl") is None  # (outside the repository)
+    assert written_from_above(tmp_path / "repo", "meshes/a.stl", above=True) is None

@@ -192,6 +192,31 @@ def test_an_include_of_a_package_uri_says_xacro_does_not_resolve_it(tmp_path):
         load(str(tmp_path / "robot.xacro"))
     message = caught.value.message
     assert "does not resolve package:// URIs" in message and "Errno" not in message, message
+    assert message.endswith("write '$(find pkg)/urdf/base.xacro'"), message
+
+
+def test_an_include_not_found_says_which_include_and_where_it_looked(tmp_path):
+    """Stretch's batch/guthrie/urdf/stretch_description_dex.xacro includes
+    stretch_dex_wrist.xacro, which its folder lacks: "No such file or directory: PATH" named
+    neither the include as written nor that the path was where xacro looked for it. Said once
+    ("not found", not also "No such file or directory"), the place left out when the include
+    writes it."""
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "urdf" / "robot.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="wrist.xacro"/></robot>')
+    with pytest.raises(LoadError) as caught:
+        load(str(tmp_path / "urdf" / "robot.xacro"))
+    assert caught.value.message == (f"xacro:include 'wrist.xacro' not found (looked at "
+                                    f"{tmp_path / 'urdf' / 'wrist.xacro'})")
+    gone = tmp_path / "gone.xacro"
+    (tmp_path / "urdf" / "robot.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        f'<xacro:include filename="{gone}"/></robot>')
+    with pytest.raises(LoadError) as caught:
+        load(str(tmp_path / "urdf" / "robot.xacro"))
+    assert caught.value.message.startswith(f"xacro:include '{gone}' not found; "), \
+        caught.value.message
 
 
 @pytest.mark.parametrize("given, said", [({}, True), ({"arm": "wx200"}, False)])
@@ -205,7 +230,7 @@ def test_an_include_naming_an_empty_argument_says_which(tmp_path, given, said):
     with pytest.raises(LoadError) as caught:
         load(str(tmp_path / "robot.xacro"), xacro_args=given)
     message = caught.value.message
-    assert "No such file or directory" in message, message
+    assert "xacro:include 'arms/$(arg arm).urdf.xacro' not found (looked at " in message, message
     assert ("names argument 'arm', which is empty here: pass arm:=VALUE" in message) == said, \
         message
 
@@ -221,7 +246,7 @@ def test_an_include_of_an_absolute_path_found_nowhere_says_it_is_absolute(tmp_pa
         with pytest.raises(LoadError) as caught:
             load(str(tmp_path / "robot.xacro"))
         message = caught.value.message
-        assert "No such file or directory" in message, message
+        assert f"xacro:include '{written}' not found" in message, message
         assert ("the include names an absolute path, there only on the machine it was written "
                 "on" in message) == said, message
 
@@ -278,8 +303,9 @@ def test_an_include_written_with_cwd_is_not_certain_where_it_is_there_from_a_fol
     with pytest.raises(LoadError) as caught:
         load(str(top))
     assert not caught.value.certain
-    assert caught.value.message.endswith("src/grip/grip.xacro: written with $(cwd), the folder "
-                                         "xacro runs from; it is there when xacro runs from 'ws'")
+    assert caught.value.message.endswith(
+        "(looked at src/grip/grip.xacro): written with $(cwd), the folder xacro runs from; it is "
+        "there when xacro runs from 'ws'")
     # from the workspace it is read; a file there from no folder stays certain
     monkeypatch.chdir(workspace)
     assert load(str(top)).links

@@ -71,7 +71,7 @@ def test_a_finding_a_rule_cannot_stamp_is_its_crash_after_the_findings_before_it
     findings = load_and_check(str(ROBOT), CheckOptions(selection=Selection(select=("U218", "U900")))).findings
     assert [f.message for f in findings if f.code == "U218"] == ["first"]
     crash = [f for f in findings if f.code == "U900"]
-    assert len(crash) == 1 and "crashed: ValueError: U218 is a" in crash[0].message and \
+    assert len(crash) == 1 and "crashed: ValueError: U218's severity is info" in crash[0].message and \
         "a finding of it cannot be more severe (error)" in crash[0].message
 
 

@@ -89,6 +89,26 @@ def containment_root(folder: Path) -> Path:
     return enclosing_root(folder) or folder
 
 
+def written_from_above(anchor, written: str, above: bool = False,
+                       skip: str | None = None) -> str | None:
+    """The nearest folder, from ``anchor``'s folder (``above``: from the folder above it) up to
+    its containment root, from which the relative path ``written`` names a file; ``skip``: a
+    folder not to count (the one it was not found from); None when none does. The one answer
+    to "written for a tool run from another folder": xacro's ``$(cwd)`` in a mesh's filename
+    or an include's (the folder xacro runs from), an include written from the repository's
+    root. Folders as named, links not followed (as :func:`containment_root`)."""
+    anchor = os.path.abspath(anchor)
+    root = os.fspath(containment_root(Path(anchor)))
+    folder = os.path.dirname(anchor) if above else anchor
+    while folder == root or folder.startswith(root.rstrip(os.sep) + os.sep):
+        if folder != skip and kind_of(os.path.join(folder, written)) == "file":
+            return folder
+        if folder == root:
+            break
+        folder = os.path.dirname(folder)
+    return None
+
+
 def link_out(path) -> tuple[str, Path] | None:
     """(where it leads, the repository) when ``path`` is, or lies in a folder that is, a
     symbolic link leading outside the repository that holds it as named; None otherwise. A
@@ -403,6 +423,14 @@ def package_uri_parts(uri: str) -> tuple[str, str]:
     if not name:
         name, _, tail = tail.lstrip("/").partition("/")
     return name, tail
+
+
+def find_form(uri: str) -> str:
+    """A ``package://NAME/PATH`` URI as xacro and launch files name the file: ``$(find
+    NAME)/PATH``, what to write where only a path is read (a xacro:include, a Gazebo plugin's
+    <parameters>)."""
+    name, tail = package_uri_parts(uri)
+    return f"$(find {name})/{tail}"
 
 
 @per_run

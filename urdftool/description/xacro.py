@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import builtins
 import contextlib
+import errno
 import io
 import fnmatch
 import math
@@ -443,7 +444,7 @@ def _yaml_opener(session: _Session):
         try:
             data = session.read_file(filename, "yaml")
         except OSError as error:
-            unsure = _unsure(session, filename, error)
+            unsure = _unsure(session, filename, error, "YAML file")
             if unsure:
                 raise unsure from None
             raise
@@ -519,22 +520,10 @@ def _replacements(session: _Session, originals, xacro, substitution_args):
             data = session.read_file(filename)
         except OSError as error:
             xacro.filestack.pop()
-            unsure = _unsure(session, filename, error) or _from_cwd(
-                session, filename, error, xacro.filestack[-1] if xacro.filestack else None)
-            if unsure:
-                raise xacro.XacroException(exc=unsure)
-            hint = ""
-            if "package:/" in filename:  # package://: a path by now, its // made one /
-                hint = " (xacro:include does not resolve package:// URIs; use $(find pkg)/...)"
-            else:
-                hint = _written_from_elsewhere(session, filename,
-                                               xacro.filestack[-1] if xacro.filestack else None)
-                if hint:  # a tool run from that folder reads it (upkie's xacrodoc): not certain
-                    raise xacro.XacroException(exc=_Unsure(
-                        error.errno, f"{error.strerror}: {display_path(filename)}{hint}"))
             # an OSError still (xacro skips an optional include by it), said once, plainly
-            raise xacro.XacroException(suffix=hint or None, exc=_Unreadable(
-                error.errno, error.strerror, filename)) from error
+            raise xacro.XacroException(exc=_unread_include(
+                session, filename, error, xacro.filestack[-1] if xacro.filestack else None)
+            ) from error
         return _parse_stamped(session, filename, data)
 
     def handle_macro_call(node, macros, symbols):
@@ -734,7 +723,7 @@ def _written_from_elsewhere(session: _Session, filename: str, including: str | N
     from that folder (Upkie's ``xacro/utils/box_inertia.xacro``, for xacrodoc run from the
     repository root by its Makefile), which reads it: the failure is then not certain (a
     warning when checked). "" otherwise."""
-    from urdftool.description.packages import containment_root
+    from urdftool.description.packages import containment_root, written_from_above
 
     if not including:
         return ""
@@ -743,28 +732,87 @@ def _written_from_elsewhere(session: _Session, filename: str, including: str | N
     if not named.startswith(base + os.sep):
         return ""  # an absolute or upward path: written as meant
     written = named[len(base) + 1:]
-    root = str(containment_root(base))
-    folder = os.path.dirname(base)
-    while folder.startswith(root) and len(folder) < len(base):
-        if files.kind_of(os.path.join(folder, written)) == "file":
-            where = "the repository's root" if folder == root else f"'{display_path(folder)}'"
-            return (f" (xacro reads an include beside the file including it; '{written}' is "
-                    f"there from {where}, as a tool run from that folder reads it: write the "
-                    "path from the including file, or $(find PKG)/...)")
-        base, folder = folder, os.path.dirname(folder)
-    return ""
+    folder = written_from_above(base, written, above=True)
+    if folder is None:
+        return ""
+    where = "the repository's root" if folder == os.fspath(containment_root(Path(base))) \
+        else f"'{display_path(folder)}'"
+    return (f" (xacro reads an include beside the file including it; '{written}' is there "
+            f"from {where}, as a tool run from that folder reads it: write the path from the "
+            "including file, or $(find PKG)/...)")
 
 
-class _Unsure(OSError):
-    """A file below a package missing from the source tree, whose package's install rules
-    could not be read: it may exist after the build (a load error that is not certain)."""
+class _Unreadable(OSError):
+    """A file xacro could not read, said as its message (an OSError says "[Errno 2] REASON:
+    'PATH'")."""
 
     def __str__(self) -> str:
         return self.strerror
 
 
+class _Unsure(_Unreadable):
+    """A file below a package missing from the source tree, whose package's install rules
+    could not be read: it may exist after the build (a load error that is not certain)."""
+
+
+def _not_read(error: OSError, filename: str, subject: str, where: str = "",
+              written: str = "") -> str:
+    """What reading ``filename`` met, said of ``subject`` (``xacro:include 'SPEC'``): "SUBJECT
+    not found WHERE (looked at PATH)" for a file missing, the place left out when ``written``
+    (the path as the file writes it) already says it; else "SUBJECT: REASON: PATH"."""
+    shown = display_path(filename)
+    if error.errno != errno.ENOENT:
+        return f"{subject}: {error.strerror}: {shown}"
+    return f"{subject} not found{where}" + ("" if written == shown else f" (looked at {shown})")
+
+
+def _unread_include(session: _Session, filename: str, error: OSError,
+                    including: str | None) -> _Unreadable:
+    """The error of an include xacro could not read (``filename``, included by ``including``),
+    as a reader reads it: the include as written (the ``filename`` of the ``xacro:include``
+    being done), what reading met and where it looked (:func:`_not_read`), and why when it is
+    known; an :class:`_Unsure` when the file may be there where it is built (its package's
+    install rules, ``$(cwd)``, a tool run from a folder above)."""
+    spec = _spec_included()
+    subject = f"xacro:include '{spec}'" if spec else "included file"
+    unsure = _unsure(session, filename, error, subject) or _from_cwd(
+        session, filename, error, including, subject)
+    if unsure:
+        return unsure
+    if "package:/" in filename:  # package://: a path by now, its // made one /
+        from urdftool.description.packages import find_form
+
+        instead = f"'{find_form(spec)}'" if spec.startswith("package://") else "$(find PKG)/..."
+        return _Unreadable(error.errno, f"{subject}: xacro:include does not resolve package:// "
+                                        f"URIs; write {instead}")
+    said = _not_read(error, filename, subject, written=spec)
+    hint = _written_from_elsewhere(session, filename, including)
+    if hint:  # a tool run from that folder reads it (upkie's xacrodoc): not certain
+        return _Unsure(error.errno, said + hint)
+    empty = _empty_arguments(spec) if error.errno == errno.ENOENT else []
+    if empty:  # a path with nothing where it names an argument: say which
+        said += (f"; the include's filename names argument '{empty[0]}', which is empty "
+                 f"here: pass {empty[0]}:=VALUE")
+    elif spec.startswith("/") and error.errno == errno.ENOENT:  # uned_crazyflie_ros_pkg's
+        said += ("; the include names an absolute path, there only on the machine it was "
+                 "written on: name the file relative to this one, or $(find PKG)/...")
+    return _Unreadable(error.errno, said)
+
+
+def _spec_included() -> str:
+    """The filename, as written, of the include xacro is doing ("" when none): the innermost
+    ``xacro.process_include``'s ``filename_spec``, read from the frames that called."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        if frame.f_code.co_name == "process_include":
+            value = frame.f_locals.get("filename_spec")
+            return value if isinstance(value, str) else ""
+        frame = frame.f_back
+    return ""
+
+
 def _from_cwd(session: _Session, filename: str, error: OSError,
-              including: str | None) -> _Unsure | None:
+              including: str | None, subject: str) -> _Unsure | None:
     """``error`` as not certain when the include was written with ``$(cwd)`` (the folder xacro
     runs from, here urdftool's) and the path after it is there from a folder above the
     including file: the robot is built from that folder (ridgeback-baxter's
@@ -777,30 +825,26 @@ def _from_cwd(session: _Session, filename: str, error: OSError,
             return None
     except OSError:
         return None
-    from urdftool.description.packages import containment_root
+    from urdftool.description.packages import written_from_above
 
-    written = filename[len(here) + 1:]
-    folder = os.path.dirname(os.path.abspath(including))
-    root = str(containment_root(folder))
-    while folder.startswith(root):
-        if folder != here and files.kind_of(os.path.join(folder, written)) == "file":
-            return _Unsure(error.errno, f"{error.strerror}: {display_path(filename)}: written "
-                                        f"with $(cwd), the folder xacro runs from; it is there "
-                                        f"when xacro runs from '{display_path(folder)}'")
-        if folder == root:
-            break
-        folder = os.path.dirname(folder)
-    return None
+    folder = written_from_above(os.path.dirname(os.path.abspath(including)),
+                                filename[len(here) + 1:], skip=here)
+    if folder is None:
+        return None
+    return _Unsure(error.errno, f"{_not_read(error, filename, subject)}: written with $(cwd), "
+                                f"the folder xacro runs from; it is there when xacro runs from "
+                                f"'{display_path(folder)}'")
 
 
-def _unsure(session: _Session, filename: str, error: OSError) -> _Unsure | None:
-    """``error`` reading ``filename`` as not certain, when the package's build may install the
-    file (its install rules could not be read); None when it is certainly missing."""
+def _unsure(session: _Session, filename: str, error: OSError, subject: str) -> _Unsure | None:
+    """``error`` reading ``filename`` (``subject``: what it is) as not certain, when the
+    package's build may install the file (its install rules could not be read); None when it
+    is certainly missing."""
     doubt = session.resolver.locate(filename).doubt if session.resolver else None
     if not doubt:
         return None
-    return _Unsure(error.errno, f"{error.strerror}: {display_path(filename)}: not found in the "
-                                f"source tree; {doubt}")
+    return _Unsure(error.errno, f"{_not_read(error, filename, subject, ' in the source tree')}; "
+                                f"{doubt}")
 
 
 def _installed(session: _Session, spec: str) -> str:
@@ -881,14 +925,6 @@ class _PackageFailure(Exception):
         self.error = error
 
 
-class _Unreadable(OSError):
-    """An included file that cannot be read, said as "REASON: PATH" (an OSError says
-    "[Errno 2] REASON: 'PATH'")."""
-
-    def __str__(self):
-        return f"{self.strerror}: {self.filename}"
-
-
 def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> XacroFailure:
     where = _failure_location(session, error.__traceback__, path)
     cause = error
@@ -933,15 +969,6 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
                     "expands it in that order by default")
         return XacroFailure("xacro", str(message), where, certain=False,
                             repeated=getattr(message, "repeated", ()))
-    if "No such file or directory" in message:
-        spec = _include_spec(error.__traceback__)
-        empty = _empty_arguments(spec)
-        if empty:  # a path with nothing where it names an argument: say which
-            message += (f"; the include's filename names argument '{empty[0]}', which is empty "
-                        f"here: pass {empty[0]}:=VALUE")
-        elif spec.startswith("/"):  # uned_crazyflie_ros_pkg's /home/kiko-hp-omen/... includes
-            message += ("; the include names an absolute path, there only on the machine it was "
-                        "written on: name the file relative to this one, or $(find PKG)/...")
     invalid = _INVALID_PARAMETER.fullmatch(message)
     if invalid:  # xacro names the attribute, not what the macro takes
         message += "; the macro called here takes no parameter of that name: " + available(
@@ -976,18 +1003,6 @@ def _on_undefined(error: Exception) -> bool:
 
 
 _ARGUMENT_USE = re.compile(r"\$\(arg\s+([^\s)]+)\)")
-
-
-def _include_spec(traceback) -> str:
-    """The filename, as written, of the include xacro was doing when it raised ("" when none):
-    the innermost ``xacro.process_include``'s ``filename_spec``."""
-    spec = ""
-    while traceback is not None:
-        value = traceback.tb_frame.f_locals.get("filename_spec")
-        if isinstance(value, str) and traceback.tb_frame.f_code.co_name == "process_include":
-            spec = value
-        traceback = traceback.tb_next
-    return spec
 
 
 def _empty_arguments(spec: str) -> list[str]:

@@ -40,7 +40,7 @@ from urdftool.records import Frozen
 from urdftool.simulators import SIMULATORS
 
 __all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule",
-           "Conditional"]
+           "Conditional", "weighed"]
 
 FAMILIES = {
     "U0": "loading and the URDF vocabulary",
@@ -75,6 +75,22 @@ class Conditional(Said):
         made = super().__new__(cls, text, tuple(repeated) + getattr(text, "repeated", ()))
         made.severity = Severity(severity)
         return made
+
+
+def weighed(message: str, certain: bool = True, workspace: bool = False,
+            repeated: tuple = ()) -> str:
+    """A file or package not found, as a finding's message at the severity what is known of it
+    decides (the one rule of U005, U006, U407, U408): a **note** when it is the workspace's
+    question, not the file's (``workspace``: a package the package.xml declares as a
+    dependency, a folder kept empty for files a tool puts there later); a **warning** when it
+    may not hold (not ``certain``: a package's build may put the file there, its install rules
+    not read; a package not installed here); else the rule's own. ``repeated``: as a
+    :class:`~urdftool.errors.Said`'s."""
+    if workspace:
+        return Conditional(message, Severity.INFO, repeated)
+    if not certain:
+        return Conditional(message, repeated=repeated)
+    return Said(message, repeated) if repeated else message
 
 
 class Rule(Frozen):
@@ -138,8 +154,8 @@ class Rule(Frozen):
                            self.target, not_checked, repeated)
         repeated = tuple(dict.fromkeys(tuple(repeated) + getattr(message, "repeated", ())))
         if severity is not None and _RANK[Severity(severity)] > _RANK[self.severity]:
-            raise ValueError(f"{self.code} is a {self.severity.value} rule; a finding of it cannot be "
-                             f"more severe ({Severity(severity).value})")
+            raise ValueError(f"{self.code}'s severity is {self.severity.value}; a finding of it "
+                             f"cannot be more severe ({Severity(severity).value})")
         if severity is None and isinstance(message, Conditional):
             severity = min(self.severity, message.severity, key=_RANK.__getitem__)
         return Finding(self.code, self.name, Severity(severity or self.severity), str(message),

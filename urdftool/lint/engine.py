@@ -8,9 +8,9 @@ from contextlib import nullcontext
 from pathlib import Path
 
 from urdftool import budget as budgets
-from urdftool.diagnostics import Finding, Location, Severity, display_path, distinct_sorted
+from urdftool.diagnostics import Finding, Location, display_path, distinct_sorted
 from urdftool.errors import LoadError, described, missing_extra
-from urdftool.lint.catalogue import Conditional, Rule
+from urdftool.lint.catalogue import Conditional, Rule, weighed
 from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.parts import judged
 from urdftool.lint.rules import CATALOGUE
@@ -125,15 +125,12 @@ def load_error_findings(error: LoadError) -> list[Finding]:
     package.xml declares as a dependency (U006). A package not installed here leaves the robot
     not checked (:attr:`~urdftool.diagnostics.Finding.not_checked`)."""
     rule = CATALOGUE.get(LOAD_CODES[error.kind])
-    message = load_error_message(error)
     unexpanded = error.kind == "package"
-    if unexpanded and error.declared:
-        # a dependency the package.xml declares: installed wherever the package is built, a
-        # question of the workspace, not a defect of the file (a note; the run still exits 2)
-        return [rule.finding(Conditional(message, Severity.INFO), error.location,
-                             not_checked=True)]  # (the message carries error.repeated)
-    return [rule.finding(message if error.certain else Conditional(message), error.location,
-                         not_checked=unexpanded)]
+    # a dependency the package.xml declares: installed wherever the package is built, a
+    # question of the workspace, not a defect of the file (a note; the run still exits 2)
+    return [rule.finding(weighed(load_error_message(error), error.certain,
+                                 unexpanded and error.declared), error.location,
+                         not_checked=unexpanded)]  # (the message carries error.repeated)
 
 
 def note_findings(robot) -> list[Finding]:

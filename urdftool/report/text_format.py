@@ -396,10 +396,15 @@ def _also(group: list, named: list | None = None) -> str:
     """The other names a group's line is about, where its findings name different things
     (three joints of one macro line, each its own limit): "; also 'b', 'c'". The names
     compared are the first place their findings' names differ, in the first findings of a
-    long group; a tag another place gives with each (one to one: :func:`_apart` split the
-    others) is said after it, as the line says the first's: "also <contact_coefficients>
-    (<collision>)" on a line of "<joint_properties> in <joint>" (a closing tag is not).
-    ``named``: those names when read already (:func:`_apart`)."""
+    long group, and with each the names in quotes or the tag it gives at the other places
+    that differ (one to one: :func:`_apart` split the others), as the line says the first's:
+    "also 'b' ('b.stl')" on a line of "link 'a' <visual>: mesh 'a.stl' not found", "also
+    <contact_coefficients> (<collision>)" on a line of "<joint_properties> in <joint>" (a
+    closing tag, an absolute path are not). A name in quotes that another place's name holds
+    in one pattern for all is said by that one alone (a mesh named after its link, a
+    transmission after its joint): "also 'package://p/meshes/b.stl'", not the link's name,
+    where the reader needs the mesh. ``named``: those names when read already
+    (:func:`_apart`)."""
     if named is None:
         named = [_names(finding.message) for finding in group[:_NAMES_READ]]
     first = named[0]
@@ -408,13 +413,36 @@ def _also(group: list, named: list | None = None) -> str:
     differ = [i for i in range(len(first)) if any(names[i] != first[i] for names in named)]
     if not differ:
         return ""  # (the same names)
-    at, with_it = differ[0], [i for i in differ[1:] if first[i][:2] != "</" and first[i][0] == "<"]
-    said = {names[at]: tuple(names[i] for i in with_it) for names in reversed(named)}
-    others = [name + (f" ({', '.join(said[name])})" if with_it else "")
-              for name in dict.fromkeys(names[at] for names in named) if name != first[at]]
+    quoted = [i for i in differ if first[i][0] == "'"]
+    held = {i for i in quoted if any(_holds(named, h, i) and not (
+        _holds(named, i, h) and (len(first[i]), -i) > (len(first[h]), -h))
+        for h in quoted if h != i)}  # (of two that hold each other, the longer, else the first)
+    differ = [i for i in differ if i not in held]
+    at, with_it = differ[0], [i for i in differ[1:] if first[i][:2] != "</" and first[i][0] in "<'"]
+    mine = (first[at], *(first[i] for i in with_it))  # (a link's second mesh is another's)
+    others = [said[0] + (f" ({', '.join(said[1:])})" if with_it else "") for said in
+              dict.fromkeys((names[at], *(names[i] for i in with_it)) for names in named)
+              if said != mine]
     if len(group) > _NAMES_READ:  # (how many in all is not known)
         return f"; also {', '.join(others[:LISTED])}, ..."
     return f"; also {_listed(others)}"
+
+
+def _holds(named: list[tuple], holder: int, i: int) -> bool:
+    """Whether the name at ``i`` is read from the name at ``holder`` in one pattern for all,
+    as the group's line shows it for its first finding: each finding's name at ``holder``
+    holds its name at ``i`` (of two characters or more: :func:`_shape`), or its name at ``i``
+    holds the part of its name at ``holder`` that differs among them (three characters or
+    more: 'package://p/meshes/{}.STL' written for 'package://q/meshes/{}.STL')."""
+    if all(len(names[i]) > 3 and names[i][1:-1] in names[holder] for names in named) and \
+            len({_shape(names, i, holder) for names in named}) == 1:
+        return True
+    written = [names[holder] for names in named]
+    start = len(os.path.commonprefix(written))
+    end = len(os.path.commonprefix([name[start:][::-1] for name in written]))
+    parts = [name[start:len(name) - end] for name in written]
+    return all(len(part) > 2 and part in names[i] for part, names in zip(parts, named)) and \
+        len({names[i].replace(part, "{}", 1) for part, names in zip(parts, named)}) == 1
 
 
 def _listed(items: list[str]) -> str:

@@ -188,8 +188,8 @@ def test_diff_drive_controller_on_position_wheels_says_what_ros2_needs(tmp_path)
 def test_a_ros1_class_in_a_ros2_file_names_the_ros2_class():
     messages = case_messages("U606_controller_unknown_class", "U606")
     # no launch file says whether it is started: the message says so first (a warning)
-    assert any(m.endswith("position_controllers/JointPositionController is a ROS 1 (ros_control) "
-                          "class, and the file has ros__parameters, so it is a ROS 2 parameter "
+    assert any(m.endswith("position_controllers/JointPositionController is a class of ROS 1 "
+                          "(ros_control), and the file has ros__parameters, so it is a ROS 2 parameter "
                           "file; ROS 2 (ros2_control) has "
                           "position_controllers/JointGroupPositionController") for m in messages)
 

@@ -494,3 +494,40 @@ def test_a_file_uri_xacro_made_with_find_of_a_package_elsewhere_is_that_packages
     assert codes("file://$(find sensor_plugins)/meshes/none.stl") == ["U408"]
     assert codes("file://$(find sensor_plugins)/meshes/outside.stl") == ["U409"]
     assert codes(f"file://{sensors}/meshes/dvl.stl") == ["U409"]
+
+
+def test_a_mesh_not_found_where_the_build_may_put_it_says_not_found_once():
+    """session 20, read as a stranger: "mesh '...' not found (looked at PATH): not found in the
+    source tree; the package's install rules could not be read": not found twice. The
+    warning says where it was not found once: "not found in the source tree (looked at PATH);
+    the package's install rules ..."."""
+    from pathlib import Path
+
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    case = Path(__file__).parents[2] / "cases" / "U408_mesh_installed_from_other_folders"
+    result = load_and_check(str(case / "robot.urdf.xacro"), CheckOptions())
+    [said] = [f.message for f in result.findings if f.code == "U408" and "tool.stl" in f.message]
+    assert said.count("not found") == 1, said
+    assert " not found in the source tree (looked at " in said and \
+        "); the package's install rules could not be read (CMakeLists.txt:5: " in said, said
+
+
+def test_every_mesh_rule_names_the_mesh_as_the_file_writes_it(tmp_path):
+    """ICube's iiwa_ros2, read as a stranger: U408 quoted the mesh as the xacro writes it
+    ('file://$(find iiwa_description)/...', expanded as detail), U416 on the next line as
+    expanded only ('file:///work/...'), a path no file of the user's says. One owner
+    (geometry._mesh_named) begins every mesh rule's message."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / "open.stl").write_text("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                                       "vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+                                       "endsolid x\n")
+    (tmp_path / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:property name="part" value="open.stl"/><link name="a">'
+        '<collision><geometry><mesh filename="${part}"/></geometry></collision></link></robot>')
+    result = load_and_check(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
+    [said] = [f.message for f in result.findings if f.code == "U414"]
+    assert said.startswith("link 'a' <collision>: mesh '${part}' (expanded: 'open.stl') is not "
+                           "watertight"), said

@@ -154,6 +154,8 @@ def test_parameters_paths(tmp_path):
         (tmp_path / "a" / ".git").mkdir(parents=True, exist_ok=True)
         _, findings = _check(tmp_path / "a", control + _plugin("libgazebo_ros2_control.so", value))
         assert [f.severity for f in findings] == ([severity] if severity else []), value
+        if value.startswith("package://"):  # the path to write, as xacro makes it (one owner)
+            assert findings[0].message.endswith("write $(find bot)/config/c.yaml"), findings
 
 
 def test_a_joint_commanded_and_never_read(tmp_path):

@@ -20,7 +20,7 @@ from pathlib import Path
 from urdftool.description.files import (MANIFESTS_SAID, inside, kind_of, listing,
                                         no_file_there, real_path, resolved, walk)
 from urdftool.description.packages import (containment_root, declaring_package, installed,
-                                          package_of, package_uri_parts)
+                                          package_of, package_uri_parts, written_from_above)
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 from urdftool.errors import MeshProblem, PackageNotFound, similarity
@@ -72,7 +72,8 @@ def _resolve(robot, uri: str) -> Path:
             return _raised(_in_package(uri, *found_by))
         located = robot.resolver.locate_uri(uri, robot.base_dir)
         found = _doubted(uri, _checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
-                                       None), located, os.fspath(robot.base_dir))
+                                       None, bool(located.doubt)),
+                         located, os.fspath(robot.base_dir))
         found = _from_cwd(robot, uri, os.fspath(located.path), found)
     return _raised(found)
 
@@ -117,17 +118,12 @@ def _from_cwd(robot, uri: str, path: str, found: Path | MeshProblem) -> Path | M
             or not robot.from_xacro or not path.startswith(here + os.sep) \
             or not any(b"$(cwd)" in data for data in robot.sources.values()):
         return found
-    written = path[len(here) + 1:]
-    folder, root = os.fspath(robot.base_dir), os.fspath(containment_root(robot.base_dir))
-    while inside(Path(folder), Path(root)):
-        if folder != here and kind_of(os.path.join(folder, written)) == "file":
-            return MeshProblem("missing", (
-                f"mesh '{uri}' not found: written with $(cwd), the folder xacro runs from; it "
-                f"is there when xacro runs from '{display_path(folder)}'"), certain=False)
-        if folder == root or os.path.dirname(folder) == folder:
-            break
-        folder = os.path.dirname(folder)
-    return found
+    folder = written_from_above(robot.base_dir, path[len(here) + 1:], skip=here)
+    if folder is None:
+        return found
+    return MeshProblem("missing", (
+        f"mesh '{uri}' not found: written with $(cwd), the folder xacro runs from; it is there "
+        f"when xacro runs from '{display_path(folder)}'"), certain=False)
 
 
 def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
@@ -233,7 +229,8 @@ def _in_package(uri: str, package: str, folder: str, tail: str) -> Path | MeshPr
     folder gets the same answer."""
     located = installed(package, Path(folder), Path(folder) / tail)
     return _doubted(uri, _checked(uri, os.fspath(located.path), os.fspath(located.within),
-                                  package), located, os.fspath(located.within))
+                                  package, bool(located.doubt)),
+                    located, os.fspath(located.within))
 
 
 def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | MeshProblem:
@@ -248,9 +245,8 @@ def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | 
     windows = _windows_path(uri, path)
     said = found.message + windows
     hint = "" if windows else _elsewhere(_real(Path(path)), base)
-    if located.doubt:
-        return MeshProblem("missing", f"{said}: not found in the source tree; "
-                                      f"{located.doubt}{hint}", certain=False)
+    if located.doubt:  # (said "not found in the source tree": _checked)
+        return MeshProblem("missing", f"{said}; {located.doubt}{hint}", certain=False)
     kept = _kept_empty(os.path.dirname(path))
     if kept:
         return MeshProblem("missing", f"{said}{hint}: not certain: its folder holds only "
@@ -275,11 +271,13 @@ def _kept_empty(folder: str) -> str:
 
 
 @per_run
-def _checked(uri: str, named: str, base: str, package: str | None) -> Path | MeshProblem:
+def _checked(uri: str, named: str, base: str, package: str | None,
+             built: bool = False) -> Path | MeshProblem:
     """The path ``named`` for mesh ``uri`` with its links followed, when it stays in package
     ``package``'s folder ``base`` (or, for ``package`` None, in the containment root of the
     robot's folder ``base``) and is a file with a mesh extension; else the MeshProblem.
-    Once per run: robots of one package name the same meshes."""
+    ``built``: the package's build may put a file there (a file missing is "not found in the
+    source tree"). Once per run: robots of one package name the same meshes."""
     path = _real(Path(named))
     if package is not None:
         folder = _real(Path(base))
@@ -307,14 +305,15 @@ def _checked(uri: str, named: str, base: str, package: str | None) -> Path | Mes
                     certain=False)
             return MeshProblem("outside", (
                 f"mesh '{uri}' {how}; urdftool does not open files outside the robot's "
-                f"repository: {_as_package_uri(written)}{_rooted_by_mistake(named, base)}"))
+                f"repository: {_rooted_by_mistake(named, base) or _as_package_uri(written)}"))
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
         looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
         why = no_file_there(path)
         if why.startswith("is "):  # something is there, not a mesh file: never opened
             return MeshProblem("corrupt", f"mesh '{uri}' {why}, not a file{looked}: not opened")
-        found = "not found" if why == "does not exist" else why
+        found = ("not found in the source tree" if built else "not found") \
+            if why == "does not exist" else why
         return MeshProblem("missing", f"mesh '{uri}' {found}{looked}")  # (advice: _doubted)
     if path.suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
@@ -343,12 +342,13 @@ _INSTALLED_SHARE = re.compile(r".*/share/([^/]+)/([^/].*)")
 def _rooted_by_mistake(named: str, base: str) -> str:
     """Advice for an absolute path that, read without its leading '/', names a file beside the
     robot (an exporter's ``/meshes/base_link.stl`` for ``meshes/base_link.stl``: Blind-Us'
-    Tancho_URDF, from StackForce SimReady); "" otherwise."""
+    Tancho_URDF, from StackForce SimReady), said instead of how to name another package's
+    file (:func:`_as_package_uri`), which it is not; "" otherwise."""
     relative = named.lstrip("/")
     if named == relative or ".." in relative.split("/") or \
             kind_of(Path(base) / relative) != "file":
         return ""
-    return (f"; the leading '/' makes it absolute: '{relative}', relative to the robot's "
+    return (f"the leading '/' makes it absolute: '{relative}', relative to the robot's "
             "folder, is there")
 
 

@@ -529,7 +529,7 @@ def controller_unknown_class(robot):
         if lookup(controller.type, other) is not None:
             instead = COUNTERPARTS.get((other, controller.type))
             message = (
-                f"{controller.type} is a {_ROS[other]} class, and {_version_reason(controller)}; "
+                f"{controller.type} is a class of {_ROS[other]}, and {_version_reason(controller)}; "
                 + (f"{_ROS[controller.ros]} has {instead}" if instead
                    else available('classes', controller.type, classes(controller.ros))))
         else:

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Conditional, Said, Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, rule, weighed
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, first_child
@@ -355,17 +355,22 @@ def _problems(robot, kind: str):
         if getattr(outcome, "kind", None) == kind:
             uri = shape.get("filename")
             said = outcome.quoting(uri, _written_filename(robot, shape, uri))
-            message = f"link '{link.get('name')}' <{holder.tag}>: {said}"
-            if kind == "package" and outcome.declared or \
-                    kind == "missing" and outcome.kept_empty:
-                # a dependency the package.xml declares, or a file the repository leaves for
-                # a tool to put in a folder kept empty: the workspace's, not the file's
-                yield shape, Conditional(message, Severity.INFO, outcome.repeated)
-                continue
-            # a problem that may not hold after the package's build: a warning saying so
-            repeated = getattr(outcome, "repeated", ())  # (a package's: where it was looked for)
-            yield shape, (Said(message, repeated) if outcome.certain else
-                          Conditional(message, repeated=repeated))
+            # a dependency the package.xml declares, or a file the repository leaves for a
+            # tool to put in a folder kept empty: the workspace's, not the file's (a note); a
+            # problem that may not hold after the package's build: a warning saying so
+            yield shape, weighed(f"link '{link.get('name')}' <{holder.tag}>: {said}",
+                                 outcome.certain, outcome.declared or outcome.kept_empty,
+                                 outcome.repeated)  # (a package's: where it was looked for)
+
+
+def _mesh_named(robot, link, holder, shape) -> str:
+    """Where a mesh finding is and which mesh, as every mesh rule's message begins: "link 'L'
+    <visual>: mesh 'WRITTEN' (expanded: 'URI')" (:func:`~urdftool.errors.mesh_quoted`)."""
+    from urdftool.errors import mesh_quoted
+
+    uri = shape.get("filename")
+    return (f"link '{link.get('name')}' <{holder.tag}>: "
+            f"{mesh_quoted(uri, _written_filename(robot, shape, uri))}")
 
 
 def _written_filename(robot, shape, uri: str) -> str:
@@ -604,7 +609,7 @@ def mesh_implausible_size(robot):
         span = _link_spans(robot).get(link.get("name"), 0.0)
         if span > 0 and factor and not span / 10 <= extent * factor <= span * 10:
             continue
-        where = f"link '{link.get('name')}' <{holder.tag}>: mesh '{shape.get('filename')}'"
+        where = _mesh_named(robot, link, holder, shape)
         if factor is None:
             yield shape, f"{where} is {number(extent)} m across; check its unit"
             continue
@@ -631,9 +636,8 @@ def mesh_not_watertight(robot):
     for link, holder, shape, outcome in _mesh_outcomes(robot):
         feeds = holder.tag == "collision" or first_child(link, "collision") is None
         if feeds and hasattr(outcome, "is_watertight") and not outcome.is_watertight:
-            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
-                          f"'{shape.get('filename')}' is not watertight; its inertia is taken "
-                          "from its convex hull")
+            yield shape, (f"{_mesh_named(robot, link, holder, shape)} is not watertight; its "
+                          "inertia is taken from its convex hull")
 
 
 @rule("U415", "empty-package-name", Severity.WARNING)
@@ -657,13 +661,13 @@ def empty_package_name(robot):
         if uri.startswith("package:///"):
             name, tail = package_uri_parts(uri)
             if not tail:  # 'package:///foot.stl': a file name, no folder to take for the package
-                yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh '{uri}' has an "
+                yield shape, (f"{_mesh_named(robot, link, holder, shape)} has an "
                               f"empty package name and no folder; Pinocchio looks '{name}' up "
                               "directly in its package directories, ROS's resource_retriever "
                               "(RViz, Gazebo, MoveIt) cannot resolve it: put the file in a "
                               f"package and write 'package://PACKAGE/{name}'")
                 continue
-            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh '{uri}' has an empty "
+            yield shape, (f"{_mesh_named(robot, link, holder, shape)} has an empty "
                           f"package name; Pinocchio (and urdftool) read it as package '{name}', "
                           "ROS's resource_retriever (RViz, Gazebo, MoveIt) cannot resolve it: "
                           f"write 'package://{name}/{tail}'")
@@ -688,7 +692,6 @@ def mesh_not_well_formed(robot):
     for link, holder, shape, outcome in outcomes:
         why = getattr(outcome, "metadata", {}).get(NOT_WELL_FORMED)
         if why:
-            yield shape, (f"link '{link.get('name')}' <{holder.tag}>: mesh "
-                          f"'{shape.get('filename')}' is not well-formed XML ({why}); read as "
-                          "repaired, as assimp reads it, but XML-strict readers (pycollada, "
-                          "trimesh) refuse it")
+            yield shape, (f"{_mesh_named(robot, link, holder, shape)} is not well-formed XML "
+                          f"({why}); read as repaired, as assimp reads it, but XML-strict readers "
+                          "(pycollada, trimesh) refuse it")

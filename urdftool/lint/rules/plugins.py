@@ -210,7 +210,7 @@ def gazebo_control_parameters_path(robot):
     Good: ``<parameters>$(find my_robot)/config/controllers.yaml</parameters>``
     """
     from urdftool.description.files import inside, kind_of, no_file_there
-    from urdftool.description.packages import containment_root
+    from urdftool.description.packages import containment_root, find_form
 
     root = containment_root(Path(robot.path).parent) if robot.path != "-" else None
     for element in gazebo_plugins(robot):
@@ -222,8 +222,8 @@ def gazebo_control_parameters_path(robot):
             if not value or "$(" in value:
                 continue
             if value.startswith("package://"):
-                yield child, (f"<parameters> '{value}' is a package:// URI; the controller manager takes a "
-                              "file path: write $(find PACKAGE)/...")
+                yield child, (f"<parameters> '{value}' is a package:// URI; the controller "
+                              f"manager takes a file path: write {find_form(value)}")
             elif not Path(value).is_absolute():
                 yield child, (f"<parameters> '{value}' is a relative path, resolved against the working "
                               "directory of whoever launches Gazebo; write $(find PACKAGE)/"
