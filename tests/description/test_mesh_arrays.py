@@ -344,6 +344,8 @@ def test_obj_triangles_are_trimeshs(tmp_path, form):
     lambda t: t.replace("v 0 0 0", "v 0 0"),  # too few coordinates
     lambda t: t.replace("s off", "v zero 0 0\ns off"),  # a word that is no number
     lambda t: t.replace("f 1 3 2", "f 1 3 2\u00a0"),  # other white space than ASCII's
+    lambda t: t.replace("v 0 0 0", "v 0 0 0+e0"),  # trimesh rewrites "+e" and "-e" first
+    lambda t: t.replace("v 0 0 0", "v 0 0 0\nv 0 0 1-e0"),
 ])
 def test_obj_that_is_not_plain_is_left_to_trimesh(tmp_path, change):
     path = tmp_path / "m.obj"
@@ -359,6 +361,37 @@ def test_obj_white_space_within_a_line_is_white_space(tmp_path):
         "v 0 0 0", "v  0\t0 0 "))
     ours, expected = (mesh_arrays.read(p, p.read_bytes()) for p in (spaced, plain))
     assert all(np.array_equal(a, b) for a, b in zip(ours, expected))
+
+
+def _obj_layouts():
+    """The cube of ``_obj_text("{v}/{t}/{n}")`` with its rows in other orders: each kind's
+    rows in one run elsewhere in the file, or in several runs (objects, comments between)."""
+    lines = _obj_text("{v}/{t}/{n}").splitlines(keepends=True)
+    kind = {head: [line for line in lines if line.startswith(head)]
+            for head in ("v ", "vt ", "vn ", "f ")}
+    return {
+        "kinds reordered": "".join(kind["f "] + kind["vn "] + kind["v "] + kind["vt "]),
+        "two objects": "".join(["o A\n"] + kind["v "][:4] + kind["vt "] + kind["f "][:6] +
+                               ["o B\n"] + kind["v "][4:] + kind["vn "] + kind["f "][6:]),
+        "comments between": "".join(sum(([f"# row {n}\n", line] for n, line in
+                                         enumerate(lines)), [])),
+        "rows interleaved": "".join(line for pair in zip(kind["v "], kind["f "])
+                                    for line in pair) + "".join(
+            kind["v "][8:] + kind["f "][8:] + kind["vt "] + kind["vn "]),
+    }
+
+
+@pytest.mark.parametrize("layout", list(_obj_layouts()))
+def test_obj_rows_are_read_wherever_each_kind_is(tmp_path, layout):
+    """A kind's rows read as one slice of the text (one run of lines) or gathered (several
+    runs) give the same triangles, as trimesh reads them wherever they are."""
+    plain = tmp_path / "plain.obj"
+    plain.write_text(_obj_text("{v}/{t}/{n}"))
+    moved = tmp_path / "moved.obj"
+    moved.write_text(_obj_layouts()[layout])
+    ours, expected = (mesh_arrays.read(p, p.read_bytes()) for p in (moved, plain))
+    assert all(np.array_equal(a, b) for a, b in zip(ours, expected))
+    assert np.array_equal(ours[0][ours[1]], _trimesh_by_position(moved).triangles)
 
 
 def _merged_then_bounds(vertices, scale=None):

@@ -146,48 +146,57 @@ def _obj(data: bytes, max_triangles: int = MAX_TRIANGLES):
 
     Read over whole columns (numpy over the bytes), not line by line: each line's kind from
     its first bytes, its words from where white space ends, and the numbers of each kind of row
-    parsed in one go."""
+    parsed in one go: one slice of the text, statement words blanked, where that kind's lines
+    follow one another (as exporters write them), else its rows gathered."""
     import numpy as np
 
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
         return None
-    text = "\n{}\n".format(text.strip().replace("\r\n", "\n")).replace("\\\n", "")
-    if "+e" in text or "-e" in text:
-        return None  # trimesh rewrites these before parsing
+    text = text.strip()  # each rewrite below only where its character is (memchr's pace)
+    if "\r" in text:
+        text = text.replace("\r\n", "\n")
+    text = "\n{}\n".format(text)
+    if "\\" in text:
+        text = text.replace("\\\n", "")
     raw = text.encode("utf-8") + (b"" if text.endswith("\n") else b"\n")  # after a last "\\"
     chars = np.frombuffer(raw + b"\n\n", dtype=np.uint8)  # two more: any line's first three
+    if _signed_exponent(chars):
+        return None  # trimesh rewrites "+e" and "-e" before parsing
     breaks = np.flatnonzero(chars[:len(raw)] == 10)  # the text starts and ends with one
     starts, ends = breaks[:-1] + 1, breaks[1:]
-    kinds = np.full(len(starts), -1, dtype=np.int8)  # index in _OBJ_KINDS; 6 comment; -1 other
-    for kind, head in enumerate(_OBJ_KINDS):
-        found = np.ones(len(starts), dtype=bool)
-        for at, byte in enumerate(head):
-            found &= chars[starts + at] == byte
-        kinds[found] = kind
-    kinds[chars[starts] == ord("#")] = len(_OBJ_KINDS)
-    counts = np.diff(np.searchsorted(np.flatnonzero(_word_starts(chars)), breaks))  # a line
+    kinds = _obj_kinds(chars, starts)
+    counts = _words_per_line(chars, breaks)
     beyond = np.zeros(0, dtype=np.int64) if text.isascii() else np.flatnonzero(chars >= 128)
     if (kinds[(counts > 0) & (kinds < 0)]).size or \
             (kinds[np.searchsorted(breaks, beyond) - 1] < 4).any():
         return None  # materials, groups, lines, indented or unknown statements;
         # text other than ASCII outside comments, o and s
-    rows = {}
+    lines = {}
     for kind, head in enumerate(_OBJ_KINDS[:4]):
-        lines = np.flatnonzero(kinds == kind)
-        if (counts[lines] != _OBJ_ITEMS[head] + 1).any():
+        lines[head] = np.flatnonzero(kinds == kind)
+        if (counts[lines[head]] != _OBJ_ITEMS[head] + 1).any():
             return None  # colours, 3D texture coordinates, polygons...
-        rows[head] = (starts[lines] + len(head), ends[lines])
-    if not len(rows[b"v "][0]) or not 0 < len(rows[b"f "][0]) <= max_triangles:
+    if not len(lines[b"v "]) or not 0 < len(lines[b"f "]) <= max_triangles:
         return None
-    corners = _obj_corners(_row_text(chars, *rows[b"f "]))
+    texts, blanked = {}, None  # blanked: the text with each row's statement word blanked
+    for head, found in lines.items():
+        if len(found) and found[-1] - found[0] + 1 == len(found):  # one run of lines
+            if blanked is None:
+                blanked = chars.copy()
+            for at in range(len(head) - 1):
+                blanked[starts[found] + at] = 32
+            texts[head] = blanked[starts[found[0]]:ends[found[-1]] + 1].tobytes()
+        else:
+            texts[head] = _row_text(chars, starts[found] + len(head), ends[found])
+    corners = _obj_corners(texts[b"f "])
     if corners is None:
         return None
     index, form = corners
     arrays = {}
     for head in (b"v ", b"vt ", b"vn "):
-        numbers = _row_floats(chars, *rows[head])
+        numbers = _row_floats(texts[head])
         if numbers is None:
             return None
         arrays[head] = numbers.reshape(-1, _OBJ_ITEMS[head]) if len(numbers) else None
@@ -200,7 +209,47 @@ def _obj(data: bytes, max_triangles: int = MAX_TRIANGLES):
         if arrays[head] is None or index[:, column].max() >= len(arrays[head]) or \
                 not np.isfinite(arrays[head]).all():
             return None
-    return arrays[b"v "][index[:, 0]], None  # each three corners a triangle
+    # each three corners a triangle; np.take copies each row whole (indexing the first axis
+    # copies element by element: five times the instructions)
+    return np.take(arrays[b"v "], index[:, 0], axis=0), None
+
+
+def _signed_exponent(chars) -> bool:
+    """Whether ``chars`` (uint8, starting with a newline) holds "+e" or "-e": an "e" looked
+    for at numpy's pace (rare outside comments), then the byte before each."""
+    import numpy as np
+
+    before = chars[np.flatnonzero(chars == ord("e")) - 1]
+    return bool(((before == ord("+")) | (before == ord("-"))).any())
+
+
+def _obj_kinds(chars, starts):
+    """Each line's index in :data:`_OBJ_KINDS` (6 a comment, -1 another line) from its first
+    three bytes (``chars`` holds two bytes after the last line)."""
+    import numpy as np
+
+    first, second = chars[starts], chars[starts + 1]
+    third = chars[starts + 2]
+    pair = first.astype(np.uint16) | second.astype(np.uint16) << 8
+    kinds = np.full(len(starts), -1, dtype=np.int8)
+    for kind, head in enumerate(_OBJ_KINDS):
+        found = pair == head[0] | head[1] << 8
+        if len(head) == 3:
+            found &= third == head[2]
+        kinds[found] = kind
+    kinds[first == ord("#")] = len(_OBJ_KINDS)
+    return kinds
+
+
+def _words_per_line(chars, breaks):
+    """How many words each line of ``chars`` (uint8) holds, the lines between ``breaks`` (its
+    newlines but the two it ends with): the word starts counted up to each newline. Where the
+    only control character is the newline, white space is every byte up to the space (one
+    comparison, not each byte looked up in :data:`_NOT_WHITE`)."""
+    import numpy as np
+
+    plain = np.count_nonzero(chars < 32) == len(breaks) + 2
+    return np.diff(np.cumsum(_word_starts(chars, chars > 32 if plain else None))[breaks])
 
 
 def _row_text(chars, starts, ends) -> bytes:
@@ -215,14 +264,14 @@ def _row_text(chars, starts, ends) -> bytes:
     return chars[offsets].tobytes()
 
 
-def _row_floats(chars, starts, ends):
-    """The numbers of rows ``starts[i]:ends[i]`` of ``chars``, every word read whole as
-    ``np.fromstring`` reads it; None when a word is no number."""
+def _row_floats(text: bytes):
+    """The numbers of rows ``text`` (ASCII), every word read whole as ``np.fromstring`` reads
+    it; None when a word is no number."""
     import warnings
 
     import numpy as np
 
-    text = _row_text(chars, starts, ends).decode("ascii")
+    text = text.decode("ascii")
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # fromstring warns, and stops, at a word
         try:
@@ -242,11 +291,11 @@ def _obj_corners(text: bytes):
         return None  # signs (relative indices), letters, rare separators...
     sample = text.split(maxsplit=1)[0]
     form = {0: 0, 1: 1, 2: 2 if b"//" in sample else 3}.get(sample.count(b"/"))
-    codes = np.frombuffer(text, dtype=np.uint8)
-    slashes = np.flatnonzero(codes == ord("/"))
-    if form is None or (form == 0 and len(slashes)):
+    if form is None or (form == 0 and b"/" in text):
         return None
     if form:
+        codes = np.frombuffer(text, dtype=np.uint8)
+        slashes = np.flatnonzero(codes == ord("/"))
         words = np.flatnonzero(_word_starts(codes))
         per_word = np.bincount(np.searchsorted(words, slashes, side="right") - 1,
                                minlength=len(words))
@@ -267,12 +316,14 @@ def _obj_corners(text: bytes):
 _NOT_WHITE = bytes(0 if byte in _WHITE else 1 for byte in range(256))  # a translation table
 
 
-def _word_starts(codes):
+def _word_starts(codes, word=None):
     """Whether each byte of ``codes`` (uint8) starts a word: is not :data:`_WHITE` and
-    follows a byte that is (or starts the text)."""
+    follows a byte that is (or starts the text). ``word``: whether each byte is not white
+    space, when the caller knows."""
     import numpy as np
 
-    word = np.frombuffer(codes.tobytes().translate(_NOT_WHITE), dtype=bool)
+    if word is None:
+        word = np.frombuffer(codes.tobytes().translate(_NOT_WHITE), dtype=bool)
     starts = word.copy()
     starts[1:] &= ~word[:-1]
     return starts
