@@ -212,6 +212,31 @@ def test_the_first_xacro_use_whatever_the_bytes_hide(body, first):
         assert first in (found.tag if "xacro" in found.tag else found.get("name"))
 
 
+@pytest.mark.parametrize("document, first", [
+    ('<robot xmlns:x="http://www.ros.org/wiki/xacro"><link name="a"/><x:if value="1"/></robot>',
+     "{http://www.ros.org/wiki/xacro}if"),  # another prefix bound to xacro's URI
+    ('<robot xmlns:xacro="http://playerstage.sourceforge.net/gazebo/xmlschema/#interface">'
+     '<link name="a"/><xacro:macro name="m"/></robot>', "#interface}macro"),  # the prefix decides
+    ('<robot><link name="a"/><xacro:if value="1"/></robot>', "xacro:if"),  # never declared
+    ('<xacro:robot xmlns:xacro="http://wiki.ros.org/xacro"><link name="a"/></xacro:robot>',
+     "xacro}robot"),  # the root itself
+    ('<robot xmlns:xacro="http://www.ros.org/wiki/xacro" xmlns:d="http://drake.mit.edu">'
+     '<link name="a"><d:x/></link></robot>', None),  # declared, used nowhere; another namespace
+])
+def test_the_first_xacro_tag_however_written(document, first):
+    """Without a substitution to look for, only tags are asked: an element of a namespace, or
+    whose name keeps a prefix, as every element is by :func:`is_xacro_element`."""
+    from lxml import etree
+
+    from urdftool.description.load import first_xacro_use
+    from urdftool.description.urdf import is_xacro_element
+
+    root = etree.fromstring(document.encode(), etree.XMLParser(recover=True))
+    found = first_xacro_use(root, False)
+    assert found is next((e for e in root.iter(etree.Element) if is_xacro_element(e)), None)
+    assert (found is None) if first is None else found.tag.endswith(first)
+
+
 def test_misspelt_property_suggests_the_defined_one(tmp_path):
     path = write(tmp_path, "r.urdf.xacro",
                  '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'

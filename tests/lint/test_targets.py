@@ -1192,3 +1192,12 @@ def test_each_link_leading_outside_is_said_however_many_lead_to_one_file(run_cli
                   for d in json.loads(result.stdout)["diagnostics"])
     assert said == [("alias.urdf", "U021"), ("secret.urdf", "U017"), ("sub/secret.urdf", "U017"),
                     ("sub/zero.urdf", "U017"), ("zero.urdf", "U017")], said
+
+
+@pytest.mark.parametrize("text", [b"", b"<link name='${n}'/>", b"$(find p)/a.stl", b"<xacro:if",
+                                  b"cost: $5 {x} (y)", b"$", b"{$", b"($", b"xacro:if", b"<a/>"])
+def test_uses_xacro_as_the_three_searches(text):
+    """The "$" looked for first changes no answer of the three needles' searches."""
+    from urdftool.lint.targets import _uses_xacro
+
+    assert _uses_xacro(text) == any(use in text for use in (b"${", b"$(", b"<xacro:"))

@@ -35,8 +35,11 @@ def first_xacro_use(root, substitutions: bool = True):
     text), or None. Comments do not count: generated URDFs often keep commented-out xacro.
     ``substitutions`` False: the document's bytes hold no ``${`` or ``$(`` that could reach
     an attribute or a text (:func:`_may_substitute`), so only a tag is looked at."""
-    if not substitutions:  # (every xacro tag holds the word: a C test first)
-        return next((e for e in root.iter(etree.Element) if is_xacro_element(e)), None)
+    if not substitutions:  # (every xacro tag holds the word: a C test first) only an element
+        # of a namespace ("{URI}name"), or whose name keeps a prefix (lxml's recovering parser
+        # keeps an undeclared ``xacro:``), may be xacro's: a plain name is not asked more
+        return next((e for e in root.iter(etree.Element)
+                     if ("{" in e.tag or ":" in e.tag) and is_xacro_element(e)), None)
     return next((e for e in root.iter(etree.Element) if _needs_xacro(e)), None)
 
 
@@ -60,7 +63,7 @@ def _may_use_xacro(data: bytes) -> bool:
 def _may_substitute(data: bytes) -> bool:
     """False when the bytes alone show that no attribute or text holds ``${`` or ``$(``: none
     is outside comments (generated URDFs keep commented-out xacro)."""
-    if b"\x00" in data[:4] or b"&#" in data:
+    if b"\x00" in data[:4] or b"&" in data and b"&#" in data:  # ("&" first: memchr's pace)
         return True  # UTF-16/32, or "$" written as a reference: only the parsed tree tells
     if b"$" not in data:
         return False

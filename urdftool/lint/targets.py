@@ -534,27 +534,32 @@ def _own_robot(path: Path, limit: int, data) -> bool:
     :func:`_summary`, whose includes only a file that is not one needs."""
     if data is None or b"\0" in data:
         return True
-    return not path.name.endswith(".srdf.xacro") and bool(_NAMED_ROBOT.search(data)) and \
-        _top_level_answer(data) != "srdf" and _has_own_links(path, limit, data) and \
-        _self_contained(path, limit, data) and not _borrows_macros(data) and \
-        not _borrows_materials(data) and not _urdf_for_xacro(path, data)
+    if path.name.endswith(".srdf.xacro") or not _NAMED_ROBOT.search(data) or \
+            _top_level_answer(data) == "srdf" or not _has_own_links(path, limit, data) or \
+            not _self_contained(path, limit, data):
+        return False
+    written = _uncommented(data)  # (once for the three questions left)
+    return not _borrows_macros(data, written) and not _borrows_materials(data, written) and \
+        not _urdf_for_xacro(path, written)
 
 
-_XACRO_USES = (b"${", b"$(", b"<xacro:")  # found by bytes.find: a regular expression of the
-# three alternatives scanned a 10,000-link robot's 3 MB at 100 instructions a byte (+4 %)
+def _uses_xacro(written: bytes) -> bool:
+    """Whether a text without comments uses xacro (``${``, ``$(``, ``<xacro:``), each looked
+    for by bytes' own search (a regular expression of the three alternatives scanned a
+    10,000-link robot's 3 MB at 100 instructions a byte, +4 %); the two-byte needles only in
+    a text holding a "$" (one byte is memchr's pace, two bytes several times slower)."""
+    return b"$" in written and (b"${" in written or b"$(" in written) or b"<xacro:" in written
 
 
-def _urdf_for_xacro(path: Path, data: bytes) -> bool:
+def _urdf_for_xacro(path: Path, written: bytes) -> bool:
     """Whether a ``.urdf`` holds xacro (``$(find)``, ``${}``, ``<xacro:``): named, it is
     checked through the robots that include it, as the folder walk checks it (RealMan's
     rm_65_gazebo.urdf, whose meshes are ``$(find rm_description)/...``, included by
     gazebo_65_description.urdf.xacro: named alone, a U007 error the walk never gave); nobody
     including it, or a launch file loading it as it is (nextage's NextageOpen.urdf, given
-    MoveIt with ``textfile=``), it is checked as it is (U007 says what reads it)."""
-    if not is_urdf_name(path.name):
-        return False
-    written = _uncommented(data)
-    if not any(use in written for use in _XACRO_USES):
+    MoveIt with ``textfile=``), it is checked as it is (U007 says what reads it). ``written``:
+    its text without comments."""
+    if not is_urdf_name(path.name) or not _uses_xacro(written):
         return False
     from urdftool.description.runtime import builds
 
@@ -577,16 +582,17 @@ def _included(path: Path, written: bytes, resolver: PackageResolver) -> list[Pat
     return list(_included_files(path, written, resolver)) if _INCLUDE_WORD in written else []
 
 
-def _borrows_macros(data: bytes) -> bool:
+def _borrows_macros(data: bytes, written: bytes) -> bool:
     """Whether a file calls a macro it neither defines nor includes (it includes nothing): xacro
     expands it only inside a file that defines the macro before including it, so it is a part
     of that robot, not a robot of its own (programmatoroSeduto/arm_urdf's arm.xacro calls the
     ``cylinder_inertia`` that main.xacro takes from macros.xacro before including it; named
     alone, as pre-commit names it, xacro failed on it, a U005 error the folder walk, which
-    checks main.xacro, never gave). Nobody including it, it is checked as it is."""
+    checks main.xacro, never gave). Nobody including it, it is checked as it is. ``written``:
+    ``data`` without comments."""
     if b"<xacro:" not in data:
         return False
-    data = _uncommented(data)
+    data = written
     if _INCLUDE_WORD in data and _ANY_INCLUDE.search(data):
         return False
     calls = set(_CALLED.findall(data)) - _DIRECTIVE_NAMES
@@ -596,17 +602,17 @@ def _borrows_macros(data: bytes) -> bool:
 _MATERIAL_NAMED = re.compile(rb"<material\s[^<>]*?name\s*=\s*[\"']([^\"'<>$]+)[\"'][^<>]*?(/?)>", re.S)
 
 
-def _borrows_materials(data: bytes) -> bool:
+def _borrows_materials(data: bytes, written: bytes) -> bool:
     """Whether a file names materials (``<material name="silver"/>``) that it defines nowhere
     (no ``<material name="silver">`` with a colour or texture) and includes nothing: urdfdom
     refuses such a robot alone, so it is written to be included after the file defining them,
     a part of the robot including it (aip-primeca-occitanie/ros_yaskawa_hc10's cell.xacro and
     pince.xacro, whose colours hc10dt_with_env.xacro includes from materials.xacro first:
     named alone, as pre-commit names them, each was U406 warnings the folder walk never gave).
-    Nobody including it, it is checked as it is."""
+    Nobody including it, it is checked as it is. ``written``: ``data`` without comments."""
     if b"<material" not in data:
         return False
-    data = _uncommented(data)
+    data = written
     if _INCLUDE_WORD in data and _ANY_INCLUDE.search(data):
         return False
     named = _MATERIAL_NAMED.findall(data)
