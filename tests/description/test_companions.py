@@ -356,6 +356,34 @@ def test_a_moveit_package_whose_srdf_is_another_robots_lends_this_one_nothing(tm
     assert any("the robot its SRDF names" in why for why in other.unused.values()), other.unused
 
 
+def test_a_moveit_package_keeping_its_srdf_xacro_in_srdf_lends_another_robot_nothing(tmp_path):
+    """PAL's TIAGo Pro (MAK-RPTU/Tiago_pro): pal_sea_arm_moveit_config keeps its SRDF as
+    config/srdf/pal_sea_arm.srdf.xacro, and the force-torque sensor's tiago_ft.urdf in
+    pal_sea_arm_description (alone in its folder) took the package's joint_limits.yaml and had
+    the seven arm joints reported missing from it. The package's SRDF, .srdf or .srdf.xacro,
+    in config/ or config/srdf/, names the robot its files are for."""
+    (tmp_path / ".git").mkdir()
+    robot = '<robot name="{}"><link name="base_link"/><link name="l1"/><joint name="{}" ' \
+            'type="revolute"><parent link="base_link"/><child link="l1"/><axis xyz="0 0 1"/>' \
+            '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>\n'
+    files = {"arm_description/robots/arm.urdf": robot.format("arm", "arm_1_joint"),
+             "arm_description/urdf/sensors/ft.urdf": robot.format("ft", "ft_joint"),
+             "arm_description/package.xml": "<package format='2'><name>arm_description</name>"
+                                            "</package>",
+             "arm_moveit_config/config/srdf/arm.srdf.xacro":
+                 '<robot name="arm" xmlns:xacro="http://ros.org/wiki/xacro"><group name="g">'
+                 '<joint name="arm_1_joint"/></group></robot>\n',
+             "arm_moveit_config/config/joint_limits.yaml":
+                 "joint_limits:\n  arm_1_joint:\n    has_velocity_limits: true\n"
+                 "    max_velocity: 1.0\n"}
+    write(tmp_path, files)
+    mine = companions(load(tmp_path / "arm_description/robots/arm.urdf"))
+    assert mine.planning_limits is not None
+    other = companions(load(tmp_path / "arm_description/urdf/sensors/ft.urdf"))
+    assert other.planning_limits is None and other.kinematics is None
+    assert any("the robot its SRDF names" in why for why in other.unused.values()), other.unused
+
+
 def test_a_moveit_package_s_yaml_is_the_srdf_its_setup_assistant_names(tmp_path):
     """Devonics' fairino5_v6_moveit2_config holds two Setup Assistant runs' robots and SRDFs
     (fairino5_v6_robot, fairino_with_ag95) and one kinematics.yaml, written for the SRDF its

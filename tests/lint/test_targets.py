@@ -1201,3 +1201,27 @@ def test_uses_xacro_as_the_three_searches(text):
     from urdftool.lint.targets import _uses_xacro
 
     assert _uses_xacro(text) == any(use in text for use in (b"${", b"$(", b"<xacro:"))
+
+
+@pytest.mark.parametrize("block", ["transmission", "ros2_control"])
+def test_a_macro_library_including_a_block_fragment_is_a_library(run_cli, tmp_path, block):
+    # fusion2urdf-ros2's NAME_macro.urdf.xacro (le0o0o0/URDF_exploring): a macro including
+    # NAME.trans, whose <transmission> blocks name joints (<joint name="..."> inside the block, a
+    # reference, no joint of the robot); nobody calls the macro, and the library was checked as
+    # a robot: 'robot has no <link> elements' (U106)
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text("<package format='3'><name>arm</name></package>")
+    (tmp_path / "urdf").mkdir()
+    (tmp_path / "urdf" / "arm.trans").write_text(
+        f'<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro"><{block} name="t">'
+        '<joint name="${prefix}j1"><hardwareInterface>hardware_interface/EffortJointInterface'
+        f'</hardwareInterface></joint></{block}></robot>')
+    library = tmp_path / "urdf" / "arm_macro.urdf.xacro"
+    library.write_text('<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                       '<xacro:macro name="arm" params="prefix">'
+                       '<xacro:include filename="$(find arm)/urdf/arm.trans"/>'
+                       '<link name="${prefix}base_link"/></xacro:macro></robot>')
+    walked = run_cli("check", tmp_path, "--format", "json")
+    assert walked.exit_code == 2 and "defines only macros" in walked.stderr, walked.stdout
+    named = run_cli("check", library, "--format", "json")
+    assert '"files": 0' in named.stdout and "defines only macros" in named.stderr

@@ -609,11 +609,13 @@ def _moveit_package_of_another(path: Path, robot) -> list[Path]:
     """The other robots whose MoveIt package holds ``path`` (a ``*_moveit_config/config``
     file): every SRDF there is theirs (:func:`_anothers`), so its controllers, kinematics and
     limits are too (deepwithin's YAM: the other arm got its MoveIt controllers' gripper
-    joint). Empty for any other file."""
+    joint). The package's SRDF is ``config/*.srdf``, or an ``.srdf.xacro`` there or in
+    ``config/srdf/`` (PAL's packages: the TIAGo Pro's force-torque sensor, alone in its folder,
+    got pal_sea_arm_moveit_config's joint limits). Empty for any other file."""
     folder = path.parent
     if folder.name != "config" or not folder.parent.name.endswith("_moveit_config"):
         return []
-    srdfs = _candidates([folder], "*.srdf")
+    srdfs = _candidates([folder, folder / "srdf"], _PACKAGE_SRDF)
     owners = [_anothers(srdf, robot) for srdf in srdfs]
     return owners[0] if srdfs and all(owners) else []
 
@@ -632,6 +634,7 @@ def _anothers(path: Path, robot) -> list[Path]:
             if real_path(other) != mine and folder in search_folders(other)]
 
 
+_PACKAGE_SRDF = "*.srdf|*.srdf.xacro"  # a MoveIt package's SRDF, as written or as xacro
 _ROBOT_NAME = re.compile(rb"<robot\b[^>]*?\sname\s*=\s*[\"']([^\"'$<>]*)[\"']")
 _HEAD = 64 * 1024  # [bytes] of a robot file where its <robot name> is looked for
 _NAMED_MOST = 1024 * 1024  # [bytes] a robot file read for its name may have (larger: no name)

@@ -1205,14 +1205,19 @@ SIMULATOR_SPAWNERS = (("gazebo_ros", ("spawn_model", "spawn_entity.py")),
 
 def simulators(robot) -> list[str]:
     """What simulates the robot, in words, from what is read of it already: the Gazebo plugins
-    of its own ``<gazebo>`` blocks, its launch files' spawners (gazebo_ros' spawn_model and
+    of its own ``<gazebo>`` blocks (the one loading its control first: it clamps commands), its launch files' spawners (gazebo_ros' spawn_model and
     spawn_entity.py, ros_gz_sim's create) and the simulators it is checked for
     (``--target``); [] when nothing here says a simulator loads it (once per robot)."""
     def build():
         from urdftool.description.actuation import gazebo_plugins
 
+        from urdftool.description.actuation import CONTROL_PLUGINS
+
         found = []
-        plugin = next((p.get("filename") for p in gazebo_plugins(robot) if p.get("filename")), None)
+        named = [p for p in gazebo_plugins(robot) if p.get("filename")]
+        # the plugin that loads the robot's control (it clamps the commands), else the first
+        control = [p for p in named if any(name in p.get("filename") for name in CONTROL_PLUGINS)]
+        plugin = next((p.get("filename") for p in control or named), None)
         if plugin:
             found.append(f"Gazebo ({plugin})")
         for package, executables in SIMULATOR_SPAWNERS:

@@ -451,22 +451,30 @@ class _OwnLinks:
 
 class _LinksOutsideMacros:
     """lxml parser target: answers 'links' at a <link>, <joint> or macro call that is not
-    inside a <xacro:macro>."""
+    inside a <xacro:macro>, nor inside an extension block (<transmission>, <ros2_control>,
+    <gazebo>, ...: their <joint name> names a joint of the robot, it writes none; fusion2urdf's
+    NAME.trans, included by the NAME_macro.urdf.xacro nobody calls, made that library a robot)."""
 
     def __init__(self):
-        self.in_macro = 0
+        self.in_macro = self.in_block = 0
 
     def start(self, tag, attributes):
         name = _local_name(tag)
         if name == "macro":  # pre-2019 xacro wrote it without the xacro: prefix
             self.in_macro += 1
-        elif not self.in_macro and (name in ("link", "joint") and not _is_xacro(tag)
-                                    or _is_xacro(tag) and name not in _XACRO_DIRECTIVES):
+        elif name in _EXTENSIONS and not _is_xacro(tag):
+            self.in_block += 1
+        elif not self.in_macro and not self.in_block and (
+                name in ("link", "joint") and not _is_xacro(tag)
+                or _is_xacro(tag) and name not in _XACRO_DIRECTIVES):
             raise _Answered("links")
 
     def end(self, tag):
-        if _local_name(tag) == "macro":
+        name = _local_name(tag)
+        if name == "macro":
             self.in_macro -= 1
+        elif name in _EXTENSIONS and not _is_xacro(tag):
+            self.in_block -= 1
 
     def close(self):
         return None

@@ -153,6 +153,16 @@ ZERO_EFFORT = ('<robot name="r"><link name="base_link"/><link name="a"/>\n'
     # a Gazebo plugin in the robot: Gazebo clamps the joint's force to 0
     ('<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>', {}, "WARNING",
      "Gazebo (libgazebo_ros_control.so) simulates the robot"),
+    # the plugin that clamps the command is named, not the first one written (MIRTE's master:
+    # "Gazebo (libgazebo_ros_imu_sensor.so) simulates the robot", an IMU as the witness)
+    ('<gazebo reference="a"><sensor name="imu" type="imu"><plugin name="i" '
+     'filename="libgazebo_ros_imu_sensor.so"/></sensor></gazebo><gazebo><plugin name="c" '
+     'filename="libgazebo_ros2_control.so"/></gazebo>', {}, "WARNING",
+     "Gazebo (libgazebo_ros2_control.so) simulates the robot"),
+    ('<gazebo reference="a"><sensor name="imu" type="imu"><plugin name="i" '
+     'filename="libgazebo_ros_imu_sensor.so"/></sensor></gazebo><gazebo><plugin name="c" '
+     'filename="libgazebo_ros_control.so"/></gazebo>', {}, "WARNING",
+     "Gazebo (libgazebo_ros_control.so) simulates the robot"),
     # a launch file spawning the file into Gazebo (mathemonads' gazebo.launch)
     ("", {"launch/gazebo.launch": '<launch><param name="robot_description" '
           'textfile="$(find bot)/robot.urdf"/><node pkg="gazebo_ros" type="spawn_model" '

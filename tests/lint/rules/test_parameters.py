@@ -148,6 +148,21 @@ def test_unknown_parameter_with_a_suggestion_once_per_unknown_group(tmp_path):
     assert "'velocity_ff' (nor anything under it" in findings[1].message
 
 
+def test_an_unknown_parameter_another_class_reads_names_that_class(tmp_path):
+    # Space ROS's Canadarm and Curiosity: interface_name given to JointTrajectoryController;
+    # it is the forward command controllers' parameter, and the message listed JTC's 40
+    # parameters without saying where the name comes from
+    found, findings = _check(tmp_path, _jtc("""\
+        head_controller:
+          ros__parameters: {joints: [head_joint], command_interfaces: [position],
+                            state_interfaces: [position], interface_name: position}
+        """))
+    assert [code for _, _, code in found] == ["U632"]
+    assert "'interface_name' is a parameter of effort_controllers/JointGroupEffortController, " \
+           "forward_command_controller/ForwardCommandController and 2 more, not of this class" \
+           in findings[0].message, findings[0].message
+
+
 def test_a_block_for_another_implementation_of_the_name_is_not_judged(tmp_path):
     # husarion_controllers' mecanum_drive_controller predates ros2_controllers' one
     yaml = _manager("mecanum_drive_controller/MecanumDriveController", """\

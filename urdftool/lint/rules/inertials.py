@@ -1062,6 +1062,17 @@ def _copied_joint_origin(robot, link, properties, read: tuple | None = None) -> 
     return None
 
 
+def _contact_spheres_only(robot, link, reach) -> bool:
+    """Whether the rigid body of ``link`` is drawn by no visual and only collision spheres:
+    contact points (a foot at the end of a shank, Stanford Pupper v3's no_visual URDF), not the
+    body's extent, so a centre of mass outside them says nothing."""
+    if link_reach(robot, link, ("visual",), rigid=True).pieces:
+        return False
+    shapes = [shape for name in reach.links if name in robot.links
+              for shape in solids._link_shapes(robot, robot.links[name])["collision"][0]]
+    return bool(shapes) and all(shape.kind == "sphere" for shape in shapes)
+
+
 @rule("U312", "com-outside-hull", Severity.WARNING)
 def com_outside_hull(robot):
     """A link's centre of mass lies outside the convex hull of its geometry.
@@ -1075,7 +1086,8 @@ def com_outside_hull(robot):
     the next link's mesh, KUKA's link_N drawn as its flange), which the message names as the
     other cause (a hull counting the neighbouring links told neither apart on the sweep: it
     held Doosan's CAD-frame centres of mass and myCobot's placeholders as well). Skipped when
-    some geometry cannot be measured (a mesh missing, refused or unreadable), and for a
+    some geometry cannot be measured (a mesh missing, refused or unreadable), for a body
+    drawn by collision spheres alone (contact points, no visual: a foot, not the leg), and for a
     frame's placeholder inertial (a link without geometry of its own whose centre of mass is
     its origin: a tool centre point between a gripper's fingers).
     Farther out than the geometry's size is U307's, an origin copied from the joint U313's.
@@ -1106,7 +1118,7 @@ def com_outside_hull(robot):
         if link in inside:
             continue  # inside one of its primitives: outside by 0
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
-        if not reach.pieces or not reach.complete:
+        if not reach.pieces or not reach.complete or _contact_spheres_only(robot, link, reach):
             continue
         # 0 at once inside a box, cylinder or sphere, or found within the margin
         outside = reach.outside(properties.com, beyond=_margin)

@@ -253,7 +253,20 @@ def _suggest(name: str, names: list[str]) -> str:
     close = close_names(name, names, n=1, cutoff=0.75)
     if close:
         return f"did you mean '{close[0]}'?"
-    return available("parameters", name, sorted({n.split(".")[0] for n in names}))
+    listed = available("parameters", name, sorted({n.split(".")[0] for n in names}))
+    readers = _readers(name)
+    if not readers:
+        return listed
+    more = f" and {len(readers) - 2} more" if len(readers) > 2 else ""
+    return f"'{name}' is a parameter of {', '.join(readers[:2])}{more}, not of this class; " + \
+        listed
+
+
+def _readers(name: str) -> list[str]:
+    """The ros2_controllers classes that read parameter ``name`` in some distribution (a
+    parameter carried over from another controller: the forward command controllers'
+    ``interface_name`` given to JointTrajectoryController)."""
+    return [kind for kind in schema.ros2_classes() if _known(_ros2(kind), name)]
 
 
 # --- U633 ------------------------------------------------------------------------------------

@@ -202,7 +202,8 @@ def gazebo_control_parameters_path(robot):
 
     gazebo_ros2_control and gz_ros2_control pass ``<parameters>`` to the controller manager as
     a parameter file: a path into the robot's repository (as ``$(find pkg)`` makes it) that
-    does not exist leaves every controller without parameters; a ``package://`` URI is not a
+    does not exist, in the source tree nor where the package's install rules take it from,
+    leaves every controller without parameters; a ``package://`` URI is not a
     path; a relative path is resolved against the working directory of whoever launches
     Gazebo (a warning). A path outside the repository is not looked at.
 
@@ -230,5 +231,14 @@ def gazebo_control_parameters_path(robot):
                               f"{value}"), None, Severity.WARNING
             elif root is not None and inside(Path(value).parent, root) and \
                     kind_of(value) != "file":
+                # $(find PKG)/config/x.yaml names share/PKG after a build, which the package's
+                # install rules may fill from another source folder (bringup/config)
+                located = robot.resolver.locate(value)
+                if kind_of(located.path) == "file":
+                    continue
+                if located.doubt:
+                    yield child, (f"<parameters> '{value}' is not in the source tree; "
+                                  f"{located.doubt}"), None, Severity.WARNING
+                    continue
                 yield child, (f"<parameters> '{value}' {no_file_there(value)}: the controller "
                               "manager starts without the controllers' parameters")
