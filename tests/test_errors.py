@@ -219,3 +219,26 @@ def test_a_said_message_is_never_rebuilt_into_a_plain_str_silently():
     assert part == ("available", "available joints: a, b", "2 joints")
     error = errors.LoadError("xacro", said, None, repeated=said.repeated)
     assert (error.message + "; more").repeated == (part,)
+
+
+def test_a_mesh_problem_leaves_a_contextmanager_block_as_itself():
+    """MeshProblem is a frozen dataclass, whose __setattr__ refused every name, the exception
+    state Python sets too: leaving a ``@contextmanager`` block (contextlib sets
+    ``__traceback__``), it became a FrozenInstanceError (met under pytest, whose runner wraps
+    each test in such blocks, with a trimesh that found no triangles in a recovered COLLADA
+    file). Its fields stay frozen."""
+    import dataclasses
+    from contextlib import contextmanager
+
+    from urdftool.errors import MeshProblem
+
+    @contextmanager
+    def block():
+        yield
+
+    with pytest.raises(MeshProblem) as raised, block():
+        raise MeshProblem("corrupt", "mesh 'm.dae' holds no triangles")
+    raised.value.add_note("noted")
+    assert raised.value.__notes__ == ["noted"]
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        raised.value.kind = "missing"

@@ -459,6 +459,28 @@ def mesh_quoted(uri: str, written: str) -> str:
     return f"mesh '{uri}'" if written == uri else f"mesh '{written}' (expanded: '{uri}')"
 
 
+def _exception_state_settable(frozen):
+    """``frozen``'s __setattr__ (a frozen dataclass's, which refuses every name) letting
+    Python set the state every exception carries: contextlib's ``@contextmanager`` sets
+    ``__traceback__`` on the exception leaving its block, ``add_note`` sets ``__notes__``.
+    Refused, a MeshProblem raised through such a block became a FrozenInstanceError."""
+    allowed = frozenset({"__traceback__", "__cause__", "__context__", "__suppress_context__",
+                         "__notes__"})
+    refusing = frozen.__setattr__
+
+    def __setattr__(self, name, value):
+        if name in allowed:
+            BaseException.__setattr__(self, name, value)
+        else:
+            refusing(self, name, value)
+
+    frozen.__setattr__ = __setattr__
+    return frozen
+
+
+_exception_state_settable(MeshProblem)
+
+
 class SrdfError(LocatedError):
     """The SRDF cannot be read; the message says where and why."""
 

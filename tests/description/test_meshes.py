@@ -566,6 +566,51 @@ def test_a_mesh_path_written_with_windows_backslashes_says_so(tmp_path):
         assert "backslashes" not in str(error.value)
 
 
+def test_a_mesh_named_as_only_the_windows_machine_it_was_exported_on_names_it_says_so(
+        tmp_path):
+    """A CAD exporter on Windows writes the mesh as that machine names it: a path with its
+    drive letter (as written, or as a file:// URI), or a package:// URI with backslashes, whose
+    package name is then all of it. 'not found (looked at .../urdf/C:\\Users\\...)', 'is an
+    absolute path, outside ...', and 'add <exec_depend>pkg\\meshes\\arm.stl</exec_depend>'
+    said none of that: each says it, and the URI to write when the repository holds the file
+    the path ends with."""
+    (tmp_path / "pkg" / "meshes").mkdir(parents=True)
+    (tmp_path / "pkg" / "package.xml").write_text("<package><name>pkg</name></package>")
+    (tmp_path / "pkg" / "meshes" / "arm.stl").write_bytes(b"solid s\nendsolid s\n")
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "pkg" / "urdf" / "r.urdf"
+    robot.parent.mkdir()
+
+    def robot_naming(named):
+        robot.write_text(f'<robot name="r"><link name="a"><visual><geometry><mesh filename='
+                         f'"{named}"/></geometry></visual></link></robot>')
+        return load(robot)
+
+    wanted = ("; the repository holds its end, pkg/meshes/arm.stl: write "
+              "'package://pkg/meshes/arm.stl'")
+    for named in ("C:\\Users\\me\\ros\\pkg\\meshes\\arm.stl",
+                  "file://D:\\ros\\pkg\\meshes\\arm.stl",
+                  "file:///C:/Users/me/ros/pkg/meshes/arm.stl", "c:/pkg/meshes/arm.stl"):
+        with pytest.raises(MeshProblem) as error:
+            resolve(robot_naming(named), named)
+        drive = named.removeprefix("file:///").removeprefix("file://")[0]
+        assert str(error.value) == (f"mesh '{named}' is a path of a Windows machine (drive "
+                                    f"{drive}:), the one the robot was exported on, there on "
+                                    f"no other{wanted}"), str(error.value)
+        assert error.value.kind == "missing" and error.value.certain
+    named = "package://pkg\\meshes\\arm.stl"
+    with pytest.raises(MeshProblem) as error:
+        resolve(robot_naming(named), named)
+    assert str(error.value) == (f"mesh '{named}' names a package 'pkg\\meshes\\arm.stl': "
+                                "backslashes are no path separators on Linux, where a "
+                                "backslash is part of a name, and no package is named so"
+                                f"{wanted}")
+    # a file the repository does not hold: said without advice
+    with pytest.raises(MeshProblem) as error:
+        resolve(robot_naming("C:\\x\\gone.stl"), "C:\\x\\gone.stl")
+    assert str(error.value).endswith("there on no other")
+
+
 def test_a_missing_mesh_named_with_the_words_of_the_backslash_advice_gets_its_own(tmp_path):
     """Where the repository has a file of a missing mesh's name is said unless the Windows
     separators' advice is (one advice); which one was read back from the message's words, and

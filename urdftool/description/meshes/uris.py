@@ -20,7 +20,8 @@ from pathlib import Path
 from urdftool.description.files import (MANIFESTS_SAID, inside, kind_of, listing,
                                         no_file_there, real_path, resolved, walk)
 from urdftool.description.packages import (containment_root, declaring_package, installed,
-                                          package_of, package_uri_parts, written_from_above)
+                                          package_name, package_of, package_uri_parts,
+                                          written_from_above)
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 from urdftool.errors import MeshProblem, PackageNotFound, similarity
@@ -51,6 +52,9 @@ def _resolved(robot, uri: str) -> Path | MeshProblem:
 
 
 def _resolve(robot, uri: str) -> Path:
+    windows = _windows_machine(robot, uri)
+    if windows is not None:
+        raise windows
     if uri.startswith("package://"):
         package, tail = package_uri_parts(uri)
         try:
@@ -76,6 +80,54 @@ def _resolve(robot, uri: str) -> Path:
                          located, os.fspath(robot.base_dir))
         found = _from_cwd(robot, uri, os.fspath(located.path), found)
     return _raised(found)
+
+
+# a Windows path with its drive letter, as written or as a file:// URI (file:///C:/, file://C:\\)
+_DRIVE = re.compile(r"(?:file:///?)?([A-Za-z]):[\\/]")
+
+
+def _windows_machine(robot, uri: str) -> MeshProblem | None:
+    """The problem of a mesh named as only a Windows machine names it (a CAD exporter's URDF):
+    by a path with a drive letter (``C:\\Users\\me\\robot\\meshes\\base.STL``,
+    ``file:///C:/...``), a file of the exporter's machine, on no other; or by a ``package://``
+    URI whose package name holds its backslashes (``package://robot\\meshes\\base.STL``: the
+    package's name is all of it, and no package is named so). Said with the URI to write when
+    the repository holds the file the path ends with (:func:`_end_in_repository`); None for
+    any other URI."""
+    drive = _DRIVE.match(uri)
+    if drive is not None:
+        letter, parts = drive.group(1), re.split(r"[\\/]", uri[drive.end():])
+        return MeshProblem("missing", f"mesh '{uri}' is a path of a Windows machine (drive "
+                                      f"{letter}:), the one the robot was exported on, there on "
+                                      f"no other{_end_in_repository(robot, parts)}")
+    if uri.startswith("package://") and "\\" in package_uri_parts(uri)[0]:
+        parts = re.split(r"[\\/]", uri[len("package://"):])
+        return MeshProblem("missing", f"mesh '{uri}' names a package '{package_uri_parts(uri)[0]}':"
+                                      " backslashes are no path separators on Linux, where a "
+                                      "backslash is part of a name, and no package is named so"
+                                      f"{_end_in_repository(robot, parts)}")
+    return None
+
+
+def _end_in_repository(robot, parts: list[str]) -> str:
+    """Advice for a mesh path written on Windows (its folders and file name ``parts``): the
+    longest end of it that is a mesh file of the robot's repository, as the URI to write
+    (``package://NAME/...`` in a package, else relative to the robot file); "" when none is."""
+    parts = [part for part in parts if part not in ("", ".")]
+    if ".." in parts or robot.path == "-":
+        return ""
+    root = _real(containment_root(Path(robot.base_dir)))
+    for start in range(len(parts)):
+        path = root.joinpath(*parts[start:])
+        if path.suffix.lower() not in MESH_EXTENSIONS or kind_of(path) != "file" or \
+                not inside(_real(path), root):
+            continue
+        folder = package_of(path)
+        name = package_name(folder) if folder is not None else None
+        written = (f"package://{name}/{Path(os.path.relpath(path, folder)).as_posix()}" if name
+                   else Path(os.path.relpath(path, robot.base_dir)).as_posix())
+        return f"; the repository holds its end, {'/'.join(parts[start:])}: write '{written}'"
+    return ""
 
 
 def _raised(found: Path | MeshProblem) -> Path:
