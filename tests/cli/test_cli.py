@@ -169,6 +169,40 @@ def test_a_robot_without_a_link_is_refused_alike_by_every_command(words, tmp_pat
     assert run_cli("xacro", path).exit_code == 0  # a macro library's expansion has no link
 
 
+POSING = [["fk"], ["dh", "--tip", "{tip}"], ["ik", "--tip", "{tip}", "--xyz", "0", "0", "0"],
+          ["workspace", "--tip", "{tip}", "--samples", "10"], ["dynamics"], ["collisions"],
+          ["render", "-o", "{tmp}/x.png"]]
+
+
+@pytest.mark.worker  # each command's result through the forked worker, as outside the tests
+@pytest.mark.parametrize("words", POSING)
+@pytest.mark.parametrize("case, tip, line", [
+    ("U105_unknown_link.urdf", "arm", "U105_unknown_link.urdf:5: error U105 joint 'j' names "
+                                      "parent link 'bse_link'"),
+    ("U109_kinematic_cycle.urdf", "b", "U109_kinematic_cycle.urdf:5: error U109 joints form a "
+                                       "cycle"),
+    ("U207_malformed_number.urdf", "arm", "U207_malformed_number.urdf:5: error U207 joint "
+                                          "'elbow': <origin xyz>"),
+    ("U201_unknown_joint_type.urdf", "arm", "U201_unknown_joint_type.urdf:4: error U201"),
+    ("U107_multiple_parents.urdf", "c", "U107_multiple_parents.urdf:9: error U107 link 'c' has "
+                                        "2 parent joints"),
+])
+def test_a_robot_in_error_is_refused_alike_by_every_command_that_poses_it(
+        words, case, tip, line, tmp_path, run_cli):
+    """One owner of "this robot cannot be posed, because": the linter's errors at their lines.
+    render said 'yourdfpy cannot build the scene (ValueError: ...)' (U207, U107) or printed a
+    traceback (U105, U109: trimesh's 'No path from base_link->arm'); fk, ik, collisions and
+    workspace 'no root link (a cycle?)' (U109) or 'reached twice (a cycle?)' (U107); dh 'no
+    revolute or prismatic joint' (U107); dynamics computed U107's robot with the link under one
+    of its parents, exit 0."""
+    command, *rest = words
+    result = run_cli(command, CASES / case, *(w.format(tmp=tmp_path, tip=tip) for w in rest))
+    assert result.exit_code == 1, result.output
+    assert line in result.stderr, result.stderr
+    assert "Traceback" not in result.stderr and "yourdfpy" not in result.stderr
+    assert "cycle?" not in result.stderr and not (tmp_path / "x.png").exists()
+
+
 @pytest.mark.parametrize("command", ["tree", "fk", "inertia", "dynamics", "collisions", "graph",
                                      "crosscheck"])
 def test_a_robot_needing_a_package_not_installed_exits_2_as_check_does(command, tmp_path,
