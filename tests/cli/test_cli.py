@@ -203,6 +203,29 @@ def test_a_robot_in_error_is_refused_alike_by_every_command_that_poses_it(
     assert "cycle?" not in result.stderr and not (tmp_path / "x.png").exists()
 
 
+@pytest.mark.worker  # each command's result through the forked worker, as outside the tests
+@pytest.mark.parametrize("words", [["tree"], *POSING])
+def test_a_part_of_a_robot_defined_elsewhere_is_refused_as_that_part(words, tmp_path, run_cli):
+    """A part (lint.parts: its joints hang on a link it does not write, no root of its own),
+    whose U105 and U011 are notes: ridgeback_iiwa's arm, hung on the base's mid_mount. fk, dh,
+    tree, ik, workspace and collisions said 'no root link (a cycle?)', render 'an element lacks
+    its 'name' attribute', dynamics listed the part's other errors (its meshes not found) as
+    why Pinocchio refused it."""
+    path = tmp_path / "arm.urdf"
+    path.write_text('<robot name="arm">\n<link name="a"/>\n<link name="b"/>\n'
+                    '<joint name="mount" type="fixed"><parent link="mid_mount"/><child link="a"/>'
+                    '</joint>\n<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+                    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+                    '</joint>\n</robot>\n')
+    command, *rest = words
+    result = run_cli(command, path, *(w.format(tmp=tmp_path, tip="b") for w in rest))
+    assert result.exit_code == 1, result.output
+    assert ("arm.urdf:1: error: a part of a robot defined elsewhere (its joints hang on links it "
+            "does not write, and it has no root link of its own): it cannot be loaded alone"
+            ) in result.stderr, result.stderr
+    assert "cycle?" not in result.stderr and not (tmp_path / "x.png").exists()
+
+
 @pytest.mark.parametrize("command", ["tree", "fk", "inertia", "dynamics", "collisions", "graph",
                                      "crosscheck"])
 def test_a_robot_needing_a_package_not_installed_exits_2_as_check_does(command, tmp_path,
