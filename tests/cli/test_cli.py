@@ -400,3 +400,32 @@ def test_an_axis_whose_squares_overflow_or_underflow_still_has_its_direction(
     result = run_cli("dynamics", path, "--timeout", "0")
     assert "has no direction" not in result.stderr and "Eigen normalises it" in result.stderr, \
         result.output
+
+
+@pytest.mark.parametrize("words", [["fk"], ["dynamics", "--samples", "5", "-f", "json"],
+                                   ["collisions"],
+                                   ["workspace", "--tip", "b", "--samples", "10"],
+                                   ["ik", "--tip", "b", "--xyz", "0", "0.1", "0"]])
+def test_a_negative_effort_or_velocity_limit_is_no_reason_to_refuse_a_robot(words, tmp_path,
+                                                                             run_cli):
+    """urdfdom (so ROS) loads a joint of ``effort="-1.0" velocity="-1.0"`` (U212 warns of it),
+    Pinocchio refuses the model: fk, ik, workspace, collisions and dynamics refused Halodi's EVE
+    (every joint so written) at its <robot> line with 'Pinocchio (urdfdom) cannot build a
+    model: Some components of min_effort are greater than max_effort'. Given to Pinocchio as
+    0, which dynamics judges as it judges -1: no limit to hold a torque against."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="a"/><link name="b"><inertial><mass value="2"/>'
+                    '<origin xyz="0.1 0 0"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" '
+                    'iyz="0"/></inertial></link>\n<joint name="j" type="revolute"><parent '
+                    'link="a"/><child link="b"/><origin xyz="0 0.1 0"/><axis xyz="0 1 0"/>'
+                    '<limit lower="-1" upper="1" effort="-1.0" velocity="-1.0"/></joint>\n'
+                    '</robot>\n')
+    command, *rest = words
+    result = run_cli(command, path, *rest, "--timeout", "0")
+    assert result.exit_code == 0, result.output
+    assert "cannot build" not in result.stderr
+    if command == "dynamics":
+        document = json.loads(result.stdout)
+        assert document["G"] == [pytest.approx(-2 * 9.81 * 0.1)]  # m g x, about the y axis
+        assert [(load["judged"], load["holds"]) for load in document["gravity_loads"]] == [
+            (False, None)]
