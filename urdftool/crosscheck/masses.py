@@ -149,7 +149,7 @@ def _mujoco(result, robot, masses: dict, declared: float) -> Account:
                      for link in without]
         held += max(geoms, 0.0)
     changes = [_without(lost, welded, "welded to the world, fused into it")] if lost else []
-    if computed:
+    if computed and held > ABSOLUTE:  # (frames fused with no geom weigh nothing: unsaid)
         changes.append(f"{number(held, 6)} kg computed from the geoms of {_named(computed)} "
                        "(no <inertial>)")
     return Account(declared - lost + held, changes)
