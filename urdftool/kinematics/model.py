@@ -86,8 +86,8 @@ def oversized_data(nv: int) -> str | None:
 def _limits_pinocchio_takes(robot) -> str:
     """``robot.urdf``, with each ``<limit>``'s negative ``effort`` or ``velocity`` written 0:
     Pinocchio refuses the model ("Some components of min_effort are greater than max_effort")
-    where urdfdom, and so ROS, loads it (U212 warns: Gazebo enforces no limit then, the URDF
-    specification reads the absolute value), and fk, ik, collisions and dynamics refused
+    where urdfdom, and so ROS, loads it (the linter warns: Gazebo enforces no limit then, the
+    URDF specification reads the absolute value), and fk, ik, collisions and dynamics refused
     Halodi's EVE (every joint's ``effort="-1.0" velocity="-1.0"``) as if urdfdom had. Poses,
     M(q) and G(q) do not depend on them; dynamics judges a torque only against a limit above
     0 (physics.dynamics.judged_effort), so -1 and 0 are both no limit to it. The text as it
@@ -97,7 +97,7 @@ def _limits_pinocchio_takes(robot) -> str:
     def negative(value) -> bool:
         try:
             return float(value) < 0
-        except (TypeError, ValueError):  # (a malformed number: urdfdom refuses it, U207)
+        except (TypeError, ValueError):  # (a malformed number: urdfdom refuses it)
             return False
 
     limits = [(limit, name) for joint in robot.children("joint")

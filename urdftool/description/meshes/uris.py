@@ -97,10 +97,10 @@ def _across(robot, uri: str, found: Path | MeshProblem, written: str) -> Path | 
     ``../../other_pkg/meshes/x.stl`` and ``package://pkg_a/../other_pkg/meshes/x.stl`` are
     ``package://other_pkg/meshes/x.stl`` where the two packages are side by side, as they are
     here (and as a relative path between two packages of one repository is read: no finding).
-    They were U409 errors, "outside the robot's repository", of a file urdftool opens when
-    named by its package. Only a folder of the package's name is asked for, so nothing outside
-    is read that ``package://`` would not read; ``found`` otherwise (a package the resolver does
-    not find: U409 as before)."""
+    They were errors, "outside the robot's repository", of a file urdftool opens when named by
+    its package. Only a folder of the package's name is asked for, so nothing outside is read
+    that ``package://`` would not read; ``found`` otherwise (a package the resolver does not
+    find: outside, as before)."""
     if not isinstance(found, MeshProblem) or found.kind != "outside" or not found.certain:
         return found
     written = os.path.normpath(written)
