@@ -169,6 +169,63 @@ def test_a_robot_without_a_link_is_refused_alike_by_every_command(words, tmp_pat
     assert run_cli("xacro", path).exit_code == 0  # a macro library's expansion has no link
 
 
+POSING = [["fk"], ["dh", "--tip", "{tip}"], ["ik", "--tip", "{tip}", "--xyz", "0", "0", "0"],
+          ["workspace", "--tip", "{tip}", "--samples", "10"], ["dynamics"], ["collisions"],
+          ["render", "-o", "{tmp}/x.png"]]
+
+
+@pytest.mark.worker  # each command's result through the forked worker, as outside the tests
+@pytest.mark.parametrize("words", POSING)
+@pytest.mark.parametrize("case, tip, line", [
+    ("U105_unknown_link.urdf", "arm", "U105_unknown_link.urdf:5: error U105 joint 'j' names "
+                                      "parent link 'bse_link'"),
+    ("U109_kinematic_cycle.urdf", "b", "U109_kinematic_cycle.urdf:5: error U109 joints form a "
+                                       "cycle"),
+    ("U207_malformed_number.urdf", "arm", "U207_malformed_number.urdf:5: error U207 joint "
+                                          "'elbow': <origin xyz>"),
+    ("U201_unknown_joint_type.urdf", "arm", "U201_unknown_joint_type.urdf:4: error U201"),
+    ("U107_multiple_parents.urdf", "c", "U107_multiple_parents.urdf:9: error U107 link 'c' has "
+                                        "2 parent joints"),
+])
+def test_a_robot_in_error_is_refused_alike_by_every_command_that_poses_it(
+        words, case, tip, line, tmp_path, run_cli):
+    """One owner of "this robot cannot be posed, because": the linter's errors at their lines.
+    render said 'yourdfpy cannot build the scene (ValueError: ...)' (U207, U107) or printed a
+    traceback (U105, U109: trimesh's 'No path from base_link->arm'); fk, ik, collisions and
+    workspace 'no root link (a cycle?)' (U109) or 'reached twice (a cycle?)' (U107); dh 'no
+    revolute or prismatic joint' (U107); dynamics computed U107's robot with the link under one
+    of its parents, exit 0."""
+    command, *rest = words
+    result = run_cli(command, CASES / case, *(w.format(tmp=tmp_path, tip=tip) for w in rest))
+    assert result.exit_code == 1, result.output
+    assert line in result.stderr, result.stderr
+    assert "Traceback" not in result.stderr and "yourdfpy" not in result.stderr
+    assert "cycle?" not in result.stderr and not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.worker  # each command's result through the forked worker, as outside the tests
+@pytest.mark.parametrize("words", [["tree"], *POSING])
+def test_a_part_of_a_robot_defined_elsewhere_is_refused_as_that_part(words, tmp_path, run_cli):
+    """A part (lint.parts: its joints hang on a link it does not write, no root of its own),
+    whose U105 and U011 are notes: ridgeback_iiwa's arm, hung on the base's mid_mount. fk, dh,
+    tree, ik, workspace and collisions said 'no root link (a cycle?)', render 'an element lacks
+    its 'name' attribute', dynamics listed the part's other errors (its meshes not found) as
+    why Pinocchio refused it."""
+    path = tmp_path / "arm.urdf"
+    path.write_text('<robot name="arm">\n<link name="a"/>\n<link name="b"/>\n'
+                    '<joint name="mount" type="fixed"><parent link="mid_mount"/><child link="a"/>'
+                    '</joint>\n<joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+                    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+                    '</joint>\n</robot>\n')
+    command, *rest = words
+    result = run_cli(command, path, *(w.format(tmp=tmp_path, tip="b") for w in rest))
+    assert result.exit_code == 1, result.output
+    assert ("arm.urdf:1: error: a part of a robot defined elsewhere (its joints hang on links it "
+            "does not write, and it has no root link of its own): it cannot be loaded alone"
+            ) in result.stderr, result.stderr
+    assert "cycle?" not in result.stderr and not (tmp_path / "x.png").exists()
+
+
 @pytest.mark.parametrize("command", ["tree", "fk", "inertia", "dynamics", "collisions", "graph",
                                      "crosscheck"])
 def test_a_robot_needing_a_package_not_installed_exits_2_as_check_does(command, tmp_path,
@@ -343,3 +400,32 @@ def test_an_axis_whose_squares_overflow_or_underflow_still_has_its_direction(
     result = run_cli("dynamics", path, "--timeout", "0")
     assert "has no direction" not in result.stderr and "Eigen normalises it" in result.stderr, \
         result.output
+
+
+@pytest.mark.parametrize("words", [["fk"], ["dynamics", "--samples", "5", "-f", "json"],
+                                   ["collisions"],
+                                   ["workspace", "--tip", "b", "--samples", "10"],
+                                   ["ik", "--tip", "b", "--xyz", "0", "0.1", "0"]])
+def test_a_negative_effort_or_velocity_limit_is_no_reason_to_refuse_a_robot(words, tmp_path,
+                                                                             run_cli):
+    """urdfdom (so ROS) loads a joint of ``effort="-1.0" velocity="-1.0"`` (U212 warns of it),
+    Pinocchio refuses the model: fk, ik, workspace, collisions and dynamics refused Halodi's EVE
+    (every joint so written) at its <robot> line with 'Pinocchio (urdfdom) cannot build a
+    model: Some components of min_effort are greater than max_effort'. Given to Pinocchio as
+    0, which dynamics judges as it judges -1: no limit to hold a torque against."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="a"/><link name="b"><inertial><mass value="2"/>'
+                    '<origin xyz="0.1 0 0"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" '
+                    'iyz="0"/></inertial></link>\n<joint name="j" type="revolute"><parent '
+                    'link="a"/><child link="b"/><origin xyz="0 0.1 0"/><axis xyz="0 1 0"/>'
+                    '<limit lower="-1" upper="1" effort="-1.0" velocity="-1.0"/></joint>\n'
+                    '</robot>\n')
+    command, *rest = words
+    result = run_cli(command, path, *rest, "--timeout", "0")
+    assert result.exit_code == 0, result.output
+    assert "cannot build" not in result.stderr
+    if command == "dynamics":
+        document = json.loads(result.stdout)
+        assert document["G"] == [pytest.approx(-2 * 9.81 * 0.1)]  # m g x, about the y axis
+        assert [(load["judged"], load["holds"]) for load in document["gravity_loads"]] == [
+            (False, None)]

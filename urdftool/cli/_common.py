@@ -204,7 +204,42 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     robot = load_robot(paths[0], args, packages, **load_options)
     if not robot.links and command != "xacro":  # a macro library expands to no link: xacro's
         _refuse_linkless(robot)
+    if command in POSING:
+        refuse_refused(robot, posing=True)
     return robot
+
+
+# the commands that pose the robot (a model of its joints and links: Pinocchio's, yourdfpy's,
+# urdftool's own): a robot in error they cannot pose is refused before any model is built
+POSING = frozenset({"fk", "dh", "ik", "dynamics", "collisions", "render", "workspace"})
+
+
+def refuse_refused(robot, posing: bool = False) -> None:
+    """A robot urdfdom refuses (check_urdf, robot_state_publisher, Pinocchio: every consumer),
+    and with ``posing`` one whose links no model of its joints poses (a link with two parents):
+    the linter's errors at their lines as ``check`` gives them, exit 1; the one owner of "this
+    robot cannot be loaded, because". Each model found its own words for it before, when it
+    found any: fk's 'no root link (a cycle?)' for U109 and 'reached twice (a cycle?)' for two
+    parents, render's 'yourdfpy cannot build the scene' (U207, U107) or a traceback (U105,
+    U109), dynamics none (U107: the link under one of its parents). A part of a robot defined
+    elsewhere (lint.parts: ridgeback_iiwa's arm, hung on the base's ``mid_mount``), whose
+    refusals are notes, is said as that part: fk and tree said 'no root link (a cycle?)',
+    render that an element lacks its 'name'."""
+    from urdftool.lint.engine import POSING_REFUSES, URDFDOM_REFUSES, urdfdom_refusals
+    from urdftool.lint.parts import part
+
+    refusals = urdfdom_refusals(robot, POSING_REFUSES if posing else URDFDOM_REFUSES)
+    if refusals:
+        report_findings(robot.path, refusals)
+        raise typer.Exit(1)
+    found = part(robot)  # (its refusals are notes: right inside the robot that includes it)
+    if found is not None:
+        where, message = robot.locate(robot.root), (
+            f"{found.condition}: it cannot be loaded alone (urdfdom refuses it too); give the "
+            "robot that includes it")
+        say(f"{where}: error: {message}", err=True)
+        _error_document(message=message, location=where)
+        raise typer.Exit(1)
 
 
 def _refuse_linkless(robot) -> None:

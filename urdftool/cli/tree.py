@@ -5,7 +5,7 @@ from __future__ import annotations
 import typer
 
 from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at,
-                                  report_findings, show, single_robot)
+                                  refuse_refused, show, single_robot)
 
 
 def register(app: typer.Typer) -> None:
@@ -18,16 +18,12 @@ def tree(
     package: list[str] = PackageOption,
 ) -> None:
     from urdftool.kinematics.tree import TreeError
-    from urdftool.lint.engine import urdfdom_refusals
     from urdftool.report.tree import tree_text
 
     robot = single_robot("tree", words, arg, package)
     if any(note.kind == "xacro-in-urdf" for note in robot.notes):
         robot = single_robot("tree", words, arg, package, as_written=True)  # as check_urdf
-    refusals = urdfdom_refusals(robot)  # check_urdf prints no tree of such a file
-    if refusals:
-        report_findings(robot.path, refusals)
-        raise typer.Exit(1)
+    refuse_refused(robot)  # check_urdf prints no tree of such a file
     try:
         show(tree_text(robot), nl=False)
     except TreeError as error:

@@ -14,11 +14,13 @@ The rules, each read in the loader's importer:
   inertial data for link, using mass=1"), but one named ``world``, which weighs nothing.
 - MuJoCo (``xml_urdf.cc``, and its compiler): the root is welded to the world and, with
   ``fusestatic`` (on for a URDF), every body with no joint is fused into its parent: the links
-  welded to the world are fused into the world body, whose mass is not the model's; a link
+  welded to the world are fused into the world body, whose mass is not the model's (but a
+  link named ``world``, which is that body: its ``<inertial>`` is the world body's mass); a link
   without ``<inertial>`` has its mass computed from its geoms (``inertiafromgeom="auto"``,
   1000 kg/m^3; its visual geoms weigh nothing): taken as MuJoCo holds it, for a link it keeps
-  as its own body. ``inertiafromgeom="true"``, ``boundmass`` and a link without ``<inertial>``
-  fused into another body are not accounted for here (said so).
+  as its own body, or fused into another (the body's mass beyond its links' ``<inertial>``s;
+  a body holding less than those is not accounted for: a disagreement). ``inertiafromgeom=
+  "true"`` and ``boundmass`` are not accounted for here (said so).
 - sdformat is not accounted for (its conversion lumps and drops links by rules of its own).
 """
 
@@ -115,27 +117,39 @@ def _mujoco(result, robot, masses: dict, declared: float) -> Account:
         if parent is not None and child is not None:
             parents.setdefault(child.get("link"), parent.get("link"))
     kept = set(result.links)
-    welded, lost, computed, held = [], 0.0, [], 0.0
+    welded, lost = [], 0.0
+    bodies: dict[str, list[str]] = {}  # a body MuJoCo keeps -> its links (itself, those fused)
     for link, mass in masses.items():
-        if link in kept:
-            if mass is None:  # its mass from its geoms, as MuJoCo holds it
-                held_mass = float((result.inertia.get(link) or {}).get("mass") or 0.0)
-                computed.append(link)
-                held += held_mass
-            continue
-        ancestor, seen = parents.get(link), {link}
-        while ancestor is not None and ancestor not in kept and ancestor not in seen:
-            seen.add(ancestor)
+        ancestor, seen = link, {link}
+        while ancestor is not None and ancestor not in kept:
             ancestor = parents.get(ancestor)
+            if ancestor in seen:
+                break
+            seen.add(ancestor)
         if ancestor is None or ancestor not in kept:  # fused into the world
-            if mass:
+            if mass and link != "world":  # (a link named world IS MuJoCo's world body: it
+                # holds that link's <inertial>, counted in the total; tested against MuJoCo)
                 welded.append(link)
                 lost += mass
-        elif mass is None:
-            return Account(None, why=f"link '{link}' has no <inertial> and is fused into "
-                                     f"'{ancestor}': its geoms' mass is not told apart")
+            continue
+        bodies.setdefault(ancestor, []).append(link)
+    computed, held = [], 0.0
+    for body, links in bodies.items():
+        without = [link for link in links if masses[link] is None]
+        if not without:
+            continue
+        # each fused link weighs its <inertial>, or without one its geoms (tested against
+        # MuJoCo: a link of 2 kg with a fixed child of no <inertial> and a 1 kg box weighs
+        # 3): the geoms' part is what the body holds beyond its links' <inertial>s
+        held_here = float((result.inertia.get(body) or {}).get("mass") or 0.0)
+        geoms = held_here - sum(masses[link] or 0.0 for link in links)
+        if geoms < -max(ABSOLUTE, RELATIVE * held_here):  # less than its <inertial>s: the
+            continue  # total falls short of the account, a disagreement
+        computed += [link if link == body else f"{link} (fused into {body})"
+                     for link in without]
+        held += max(geoms, 0.0)
     changes = [_without(lost, welded, "welded to the world, fused into it")] if lost else []
-    if computed:
+    if computed and held > ABSOLUTE:  # (frames fused with no geom weigh nothing: unsaid)
         changes.append(f"{number(held, 6)} kg computed from the geoms of {_named(computed)} "
                        "(no <inertial>)")
     return Account(declared - lost + held, changes)

@@ -20,13 +20,14 @@ def stack_size(links: int) -> int:
 
 
 def build_model(robot, root_joint=None, root_name: str | None = None):
-    """``pinocchio.buildModelFromXML(robot.urdf[, root_joint, root_name])`` on a deep stack.
+    """``pinocchio.buildModelFromXML(robot.urdf[, root_joint, root_name])`` on a deep stack
+    (a negative effort or velocity limit given as 0: :func:`_limits_pinocchio_takes`).
 
     Raises what Pinocchio raises (ValueError, RuntimeError) and MemoryError.
     """
     import pinocchio
 
-    urdf = robot.urdf
+    urdf = _limits_pinocchio_takes(robot)
     arguments = (urdf,) if root_joint is None else (urdf, root_joint, root_name)
     outcome: list = []
 
@@ -80,3 +81,34 @@ def oversized_data(nv: int) -> str | None:
     return (f"{nv} joint variables: Pinocchio's data (where its algorithms compute) would "
             f"need about {format_memory(needed)} (it grows with the cube of the joints) and "
             f"this process may use {format_memory(cap)}; analyse a sub-chain (fewer joints)")
+
+
+def _limits_pinocchio_takes(robot) -> str:
+    """``robot.urdf``, with each ``<limit>``'s negative ``effort`` or ``velocity`` written 0:
+    Pinocchio refuses the model ("Some components of min_effort are greater than max_effort")
+    where urdfdom, and so ROS, loads it (the linter warns: Gazebo enforces no limit then, the
+    URDF specification reads the absolute value), and fk, ik, collisions and dynamics refused
+    Halodi's EVE (every joint's ``effort="-1.0" velocity="-1.0"``) as if urdfdom had. Poses,
+    M(q) and G(q) do not depend on them; dynamics judges a torque only against a limit above
+    0 (physics.dynamics.judged_effort), so -1 and 0 are both no limit to it. The text as it
+    is when no limit is negative (the usual case: one pass over the joints)."""
+    import copy
+
+    def negative(value) -> bool:
+        try:
+            return float(value) < 0
+        except (TypeError, ValueError):  # (a malformed number: urdfdom refuses it)
+            return False
+
+    limits = [(limit, name) for joint in robot.children("joint")
+              for limit in joint.iterchildren("limit") for name in ("effort", "velocity")
+              if negative(limit.get(name))]
+    if not limits:
+        return robot.urdf
+    from lxml import etree
+
+    root = copy.deepcopy(robot.root)  # (the robot's own tree is every rule's: left as read)
+    twins = dict(zip(map(id, robot.root.iter()), root.iter()))
+    for limit, name in limits:
+        twins[id(limit)].set(name, "0")
+    return etree.tostring(root, encoding="unicode", pretty_print=False)

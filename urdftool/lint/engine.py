@@ -40,6 +40,10 @@ URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
                              "U101", "U102", "U103", "U104", "U105", "U106", "U108", "U109",
                              "U110", "U201", "U202", "U203", "U207", "U208", "U213",
                              "U023"})
+# ... and what the commands that pose a robot (fk, render...) refuse besides: a link with two
+# parent joints (U107), which urdfdom and Pinocchio hang under the joint whose name sorts last,
+# urdftool's kinematics and yourdfpy under neither (they stopped at it in their own words)
+POSING_REFUSES = URDFDOM_REFUSES | {"U107"}
 _HINTS = {"too-large": lambda subject: " (raise it with --max-file-size)",
           "arg": lambda subject: f"; pass it as {subject}:=VALUE (or --arg {subject}=VALUE)"}
 
@@ -196,11 +200,12 @@ def target_versions(targets) -> dict:
     return found
 
 
-def urdfdom_refusals(robot) -> list[Finding]:
+def urdfdom_refusals(robot, codes=URDFDOM_REFUSES) -> list[Finding]:
     """Why urdfdom (check_urdf, robot_state_publisher) would refuse a loaded robot: the errors
-    of :data:`URDFDOM_REFUSES`, located, sorted; empty when it would parse it. Inline
-    suppressions do not apply: they cannot make urdfdom accept a file."""
-    found = _run_rules(robot, URDFDOM_REFUSES.__contains__)
+    of :data:`URDFDOM_REFUSES` (or of ``codes``: :data:`POSING_REFUSES`), located, sorted;
+    empty when it would parse it. Inline suppressions do not apply: they cannot make urdfdom
+    accept a file."""
+    found = _run_rules(robot, codes.__contains__)
     return sorted({f for f in found if f.severity.value == "error"}, key=Finding.sort_key)
 
 

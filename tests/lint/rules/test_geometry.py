@@ -531,3 +531,52 @@ def test_every_mesh_rule_names_the_mesh_as_the_file_writes_it(tmp_path):
     [said] = [f.message for f in result.findings if f.code == "U414"]
     assert said.startswith("link 'a' <collision>: mesh '${part}' (expanded: 'open.stl') is not "
                            "watertight"), said
+
+
+def test_a_mesh_path_leading_by_dots_into_a_package_found_there_is_that_packages_file(tmp_path):
+    """A relative ``../../other_pkg/meshes/x.stl`` from a package without a repository, and
+    ``package://pkg_a/../other_pkg/meshes/x.stl``, lead into the package other_pkg, which the
+    resolver finds right there (as ``package://other_pkg/...`` would name it): every way a
+    mesh path crosses into another package by its folders. Both were U409 ("outside the robot's
+    repository", "leaves package 'pkg_a'"), though a relative path between two packages of one
+    repository is no finding and urdftool opens that package's files when named by it. Read
+    and checked as that package's file (a broken mesh is U412, one missing U408); a path
+    leading on out of that package, into a folder no package found, or named by its absolute
+    path, stays U409."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    workspace = tmp_path / "ws" / "src"
+    for name in ("pkg_a", "other_pkg"):
+        (workspace / name).mkdir(parents=True)
+        (workspace / name / "package.xml").write_text(
+            f'<package format="2"><name>{name}</name><exec_depend>other_pkg</exec_depend>'
+            '</package>')
+    _stl(workspace / "other_pkg" / "meshes" / "x.stl")
+    (workspace / "other_pkg" / "meshes" / "empty.stl").write_bytes(b"")
+    _stl(workspace / "loose" / "x.stl")
+    (workspace / "pkg_a" / "urdf").mkdir()
+
+    def codes(filename, **options):
+        robot = workspace / "pkg_a" / "urdf" / "r.urdf"
+        robot.write_text(
+            '<robot name="r"><link name="a">'
+            f'<visual><geometry><mesh filename="{filename}"/></geometry></visual></link>'
+            '</robot>')
+        result = load_and_check(str(robot), CheckOptions(**options))
+        return sorted(f.code for f in result.findings if f.code in ("U407", "U408", "U409",
+                                                                    "U412"))
+
+    assert codes("../../other_pkg/meshes/x.stl") == []
+    assert codes("package://pkg_a/../other_pkg/meshes/x.stl") == []
+    assert codes("../../other_pkg/meshes/x.stl",
+                 packages={"other_pkg": workspace / "other_pkg"}) == []
+    assert codes("../../other_pkg/meshes/empty.stl") == ["U412"]
+    assert codes("../../other_pkg/meshes/none.stl") == ["U408"]
+    assert codes("package://pkg_a/../other_pkg/meshes/none.stl") == ["U408"]
+    assert codes("../../other_pkg/../loose/x.stl") == ["U409"]
+    assert codes("package://pkg_a/../loose/x.stl") == ["U409"]
+    assert codes(f"file://{workspace}/other_pkg/meshes/x.stl") == ["U409"]
+    # found elsewhere by --package: the folder the path leads into is no package found
+    (tmp_path / "copy").mkdir()
+    assert codes("../../other_pkg/meshes/x.stl", packages={"other_pkg": tmp_path / "copy"}) \
+        == ["U409"]

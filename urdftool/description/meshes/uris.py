@@ -62,6 +62,7 @@ def _resolve(robot, uri: str) -> Path:
         except PackageNotFound as error:
             raise _no_package(robot, uri, package, tail, error) from None
         found = _in_package(uri, package, os.fspath(folder), tail)
+        found = _across(robot, uri, found, os.path.join(os.fspath(folder), tail))
     else:
         if uri.startswith("model://"):
             raise MeshProblem("format", f"mesh '{uri}': a Gazebo model:// URI, which Gazebo finds "
@@ -78,6 +79,8 @@ def _resolve(robot, uri: str) -> Path:
         found = _doubted(uri, _checked(uri, os.fspath(located.path), os.fspath(robot.base_dir),
                                        None, bool(located.doubt)),
                          located, os.fspath(robot.base_dir))
+        if not uri.startswith("file://"):  # (an absolute path names one machine's files)
+            found = _across(robot, uri, found, os.path.join(os.fspath(robot.base_dir), uri))
         found = _from_cwd(robot, uri, os.fspath(located.path), found)
     return _raised(found)
 
@@ -133,6 +136,40 @@ def _end_in_repository(robot, parts: list[str]) -> str:
 def _raised(found: Path | MeshProblem) -> Path:
     if isinstance(found, MeshProblem):
         raise replace(found)  # a new one: raised once per robot
+    return found
+
+
+# [folders] above a mesh that leaves its package looked at for the package it leads into
+_ACROSS_DEPTH = 8
+
+
+def _across(robot, uri: str, found: Path | MeshProblem, written: str) -> Path | MeshProblem:
+    """``found``, for a relative mesh path leaving the robot's repository (or package) or a
+    ``package://`` path leaving its package by ``..``, read instead as the file of the package
+    it leads into when the robot's resolver finds that package there: pkg_a's
+    ``../../other_pkg/meshes/x.stl`` and ``package://pkg_a/../other_pkg/meshes/x.stl`` are
+    ``package://other_pkg/meshes/x.stl`` where the two packages are side by side, as they are
+    here (and as a relative path between two packages of one repository is read: no finding).
+    They were errors, "outside the robot's repository", of a file urdftool opens when named by
+    its package. Only a folder of the package's name is asked for, so nothing outside is read
+    that ``package://`` would not read; ``found`` otherwise (a package the resolver does not
+    find: outside, as before)."""
+    if not isinstance(found, MeshProblem) or found.kind != "outside" or not found.certain:
+        return found
+    written = os.path.normpath(written)
+    folder = os.path.dirname(written)
+    for _ in range(_ACROSS_DEPTH):
+        name = os.path.basename(folder)
+        if not name:
+            break
+        try:
+            at = robot.resolver.find(name)
+        except PackageNotFound:
+            at = None
+        if at is not None and real_path(os.fspath(at)) == real_path(folder):
+            return _in_package(uri, name, os.fspath(at),
+                               Path(os.path.relpath(written, folder)).as_posix())
+        folder = os.path.dirname(folder)
     return found
 
 

@@ -452,7 +452,10 @@ def mesh_outside_root(robot):
     A ``file://`` path xacro made with ``$(find PACKAGE)`` names where that package is on the
     machine xacro runs on, on every machine, as ``package://PACKAGE/...`` does: it is read
     as that package's file (found by ``--package`` or the package path, outside the
-    repository too), and is U409 only when it leaves the package.
+    repository too), and is U409 only when it leaves the package. So is a relative path, or a
+    ``package://`` path, that leads by ``..`` into a package found right there
+    (``../../other_pkg/meshes/x.stl`` where other_pkg is found beside the robot's package):
+    ``package://other_pkg/meshes/x.stl`` where the two packages are side by side.
 
     Bad: ``<mesh filename="file:///home/me/meshes/base.stl"/>``, ``filename="../../../x.stl"``
     Good: ``<mesh filename="package://my_robot/meshes/base.stl"/>``
