@@ -947,7 +947,7 @@ def test_the_servers_messages_hold_no_lone_surrogate(tmp_path):
     [answer] = [part for part in out.split(b"Content-Length: ") if b'"id": 3' in part]
     length, body = answer.split(b"\r\n\r\n", 1)
     assert int(length.split(b"\r\n")[0]) == len(body)
-    assert json.loads(body)["error"]["message"].endswith("x\ufffd\U0001F600")
+    assert json.loads(body)["error"]["message"].endswith("x\ufffdFF\U0001F600")
 
 
 def test_messages_pygls_cannot_read_are_logged_one_line_each_and_the_server_goes_on(tmp_path):
