@@ -15,8 +15,9 @@ from pathlib import Path
 from urdftool.description import mesh_arrays
 from urdftool.description.collada import ColladaProblem
 from urdftool.description.inputs import MeshLimits
-from urdftool.description.meshes.reading import NOT_WELL_FORMED, beyond_range, check_size, \
-    collada_unit, finite_scale, mesh_bytes, read_once, recovered_collada, refuse_too_many
+from urdftool.description.meshes.reading import NOT_FINITE, NOT_WELL_FORMED, beyond_range, \
+    check_size, collada_unit, finite_scale, mesh_bytes, read_once, recovered_collada, \
+    refuse_too_many
 from urdftool.description.meshes.run_cache import once, stamp_of
 from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem
@@ -47,7 +48,7 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
 
             arrays = mesh_arrays.merged(np.asarray(loaded.vertices, dtype=np.float64),
                                         np.asarray(loaded.faces, dtype=np.int64))
-            found = _Arrays(*arrays, dict(loaded.metadata), merged=True)
+            found = _Arrays(*arrays, {**metadata, **loaded.metadata}, merged=True)
         else:
             found = _Arrays(*arrays, metadata, unit=unit)
         refuse_too_many(uri, found.triangles, limits)
@@ -74,7 +75,8 @@ def _collada_arrays(path: Path, uri: str, data: bytes, limits: MeshLimits):
     except ColladaProblem as problem:
         if problem.kind == "too-large":
             raise MeshProblem("too-large", f"mesh '{uri}': {problem}; not loaded") from None
-        return None, {}
+        # trimesh reads it (pycollada: a position that is not finite made another one)
+        return None, ({NOT_FINITE: str(problem)} if problem.not_finite else {})
     return arrays, metadata
 
 

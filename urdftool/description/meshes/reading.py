@@ -8,7 +8,9 @@
 - a COLLADA file that is not well-formed XML is read as libxml2's recover mode reads it (assimp,
   which RViz, Gazebo and MoveIt load meshes with, is as lenient); the loaded mesh says so in
   ``metadata[NOT_WELL_FORMED]``; it is scaled by the ``<unit meter>`` it declares, as RViz and
-  Gazebo do.
+  Gazebo do;
+- triangles whose vertices are not finite numbers are left out, as trimesh leaves them out:
+  none kept is "holds no triangles" saying why, some kept is said in ``metadata[NOT_FINITE]``.
 
 Meshes are read once per run (:mod:`.run_cache`) and kept per robot by scale
 (:func:`load_mesh`). trimesh is imported lazily.
@@ -33,6 +35,12 @@ from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem, described
 
 NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
+# mesh metadata: which of its triangles use vertices that are not finite numbers (trimesh
+# leaves them out), when some are kept
+NOT_FINITE = "urdftool_not_finite"
+# what a text mesh holding a number that is not finite holds (nan, inf, an exponent of three
+# digits: 1e400): only a sign, which :func:`_non_finite` counts exactly
+_NOT_FINITE_SIGN = re.compile(rb"(?i)nan|inf|[0-9.]e\+?0*[1-9][0-9]{2}")
 # The first line of a Git LFS pointer: what a clone without git-lfs holds instead of the file
 LFS_POINTER = b"version https://git-lfs.github.com/spec/"
 
@@ -223,24 +231,47 @@ def _why_no_triangles(data: bytes, suffix: str, path: Path, limits: MeshLimits) 
     ``1e400``: trimesh drops such faces as it processes the mesh; "holds no triangles" was all
     the finding said of a file holding one). The file is read again, unprocessed: only on this
     way out."""
-    import numpy
-    import trimesh
-
     mismatch = _binary_stl_mismatch(data) if suffix == ".stl" else ""
     if mismatch:
         return mismatch
-    try:
-        raw = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=False,
-                           resolver=_geometry_resolver(path, limits))
-        faces, vertices = numpy.asarray(raw.faces), numpy.asarray(raw.vertices, dtype=float)
-        bad = int((~numpy.isfinite(vertices[faces]).all(axis=(1, 2))).sum()) if len(faces) \
-            else 0
-    except Exception:  # the reason is a courtesy: the file holds no triangles either way
-        return ""
+    bad = _non_finite(data, suffix, path, limits)[0]
     if not bad:
         return ""
     return (f": its {bad} triangle{'s use' if bad > 1 else ' uses'} vertices that are not "
             f"finite numbers (nan, inf or past the float range), which trimesh drops")
+
+
+def _non_finite(data: bytes, suffix: str, path: Path, limits: MeshLimits) -> tuple[int, int]:
+    """(the triangles of the file whose vertices are not all finite numbers, its triangles),
+    the file read again by trimesh unprocessed; (0, 0) when it cannot be."""
+    import numpy
+    import trimesh
+
+    try:
+        raw = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=False,
+                           resolver=_geometry_resolver(path, limits))
+        faces, vertices = numpy.asarray(raw.faces), numpy.asarray(raw.vertices, dtype=float)
+        if not len(faces):
+            return 0, 0
+        return int((~numpy.isfinite(vertices[faces]).all(axis=(1, 2))).sum()), len(faces)
+    except Exception:  # the reason is a courtesy: the file holds no triangles either way
+        return 0, 0
+
+
+def _may_hold_non_finite(data: bytes, suffix: str) -> bool:
+    """Whether a mesh trimesh read may have had triangles left out for vertices that are not
+    finite: a binary STL's numbers looked at (numpy over the records), any other file's text
+    searched for :data:`_NOT_FINITE_SIGN` when it is text (no NUL in its first 64 KiB: a
+    binary PLY or glTF buffer's floats are not looked at)."""
+    if suffix == ".stl":
+        from urdftool.description.mesh_arrays import _stl_binary
+
+        raw = _stl_binary(data)
+        if raw is not None:
+            import numpy
+
+            return not numpy.isfinite(raw).all()
+    return b"\0" not in data[:65536] and _NOT_FINITE_SIGN.search(data) is not None
 
 
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
@@ -272,6 +303,12 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
         raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles"
                                      f"{_why_no_triangles(data, suffix, path, limits)}")
     refuse_too_many(uri, len(loaded.faces), limits)
+    if _may_hold_non_finite(data, suffix):  # (some triangles left out: trimesh says nothing)
+        bad, total = _non_finite(data, suffix, path, limits)
+        if bad:
+            loaded.metadata[NOT_FINITE] = (f"{bad} of its {total} triangles use vertices that "
+                                           "are not finite numbers (nan, inf or past the float "
+                                           "range)")
     unit = collada_unit(data) if suffix == ".dae" else 1.0
     if unit != 1.0:
         loaded.apply_scale(unit)
