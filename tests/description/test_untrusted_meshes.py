@@ -416,3 +416,32 @@ def test_a_mesh_some_of_whose_triangles_are_not_finite_says_so(tmp_path, kind):
         findings[0].message
     if kind != "dae":
         assert "1 of its 5 triangles" in findings[0].message
+
+
+@pytest.mark.parametrize("head", ["", "g part\n"])  # urdftool's OBJ reader; trimesh's
+def test_a_mesh_with_a_coordinate_too_far_to_measure_is_refused_by_either_reader(tmp_path,
+                                                                                 head):
+    """A vertex at 1e200 (its own unit): vertices merge at 1e-8 as 64-bit integers (numpy's
+    "invalid value encountered in cast"), its volume and inertia overflowed ("encloses no
+    volume"), and collisions and render printed numpy's warnings: refused past
+    MAX_COORDINATE (U411) by either reader, one unused so far is no matter."""
+    import warnings
+
+    from urdftool.description.load import load
+    from urdftool.description.meshes import MeshProblem, load_mesh
+    from urdftool.lint.engine import check_robot
+
+    name = "far.obj"
+    (tmp_path / name).write_text(head + "v 0 0 0\nv 1e200 0 0\nv 0 1 0\nv 0 0 1\nv 1e300 0 0\n"
+                                        "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        robot = load(str(_robot(tmp_path, name)))
+        [finding] = [f for f in check_robot(robot) if f.code == "U411"]
+        assert "has a coordinate of 1e+200, past the 1e+10" in finding.message
+        with pytest.raises(MeshProblem, match="past the 1e"):
+            load_mesh(robot, name)
+    (tmp_path / name).write_text(head + "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1e300 0 0\n"
+                                        "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    robot = load(str(_robot(tmp_path, name)))
+    assert not [f for f in check_robot(robot) if f.code in ("U411", "U412")]

@@ -17,7 +17,7 @@ from urdftool.description.collada import ColladaProblem
 from urdftool.description.inputs import MeshLimits
 from urdftool.description.meshes.reading import NOT_FINITE, NOT_WELL_FORMED, beyond_range, \
     check_size, collada_unit, finite_scale, mesh_bytes, read_once, recovered_collada, \
-    refuse_too_many
+    refuse_too_far, refuse_too_many
 from urdftool.description.meshes.run_cache import once, stamp_of
 from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem
@@ -50,6 +50,7 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
                                         np.asarray(loaded.faces, dtype=np.int64))
             found = _Arrays(*arrays, {**metadata, **loaded.metadata}, merged=True)
         else:
+            refuse_too_far(uri, arrays[0])
             found = _Arrays(*arrays, metadata, unit=unit)
         refuse_too_many(uri, found.triangles, limits)
         return found, found.nbytes

@@ -138,6 +138,28 @@ def refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:
                                        f"limit of {limits.max_triangles}; decimate it")
 
 
+# [the mesh's own unit] the largest coordinate of a mesh measured: vertices merge at 1e-8
+# (mesh_arrays.MERGE_DIGITS) as 64-bit integers, which hold 9.2e18 (9.2e10 m); its volume and
+# inertia take the third and fifth powers
+MAX_COORDINATE = 1e10
+
+
+def refuse_too_far(uri: str, vertices) -> None:
+    """MeshProblem (too-large) for a mesh with a coordinate past :data:`MAX_COORDINATE`, read
+    by either reader (urdftool's arrays, trimesh's: give its ``bounds``, of the vertices its
+    faces use): 1e200 merged its vertices by integers numpy could not make ("invalid value
+    encountered in cast"), overflowed its measures and was "encloses no volume" to
+    inertia."""
+    if len(vertices):
+        far = max(float(vertices.max()), -float(vertices.min()))
+        if not far <= MAX_COORDINATE:
+            from urdftool.numbers import number
+
+            raise MeshProblem("too-large", f"mesh '{uri}' has a coordinate of {number(far)}, "
+                                           f"past the {number(MAX_COORDINATE)} (in its own "
+                                           "unit) urdftool measures meshes within")
+
+
 _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
 
 
@@ -287,8 +309,11 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     suffix = path.suffix.lower()
     try:
         try:
-            loaded = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh",
-                                  process=True, resolver=_geometry_resolver(path, limits))
+            with warnings.catch_warnings():  # numpy's, on vertices not finite or too far
+                # (merging them in integers): each is said by a finding (U416, U411) below
+                warnings.simplefilter("ignore", RuntimeWarning)
+                loaded = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh",
+                                      process=True, resolver=_geometry_resolver(path, limits))
         except Exception as error:  # pycollada refuses XML that is not well-formed
             recovered = recovered_collada(data) if suffix == ".dae" and \
                 "XML Parsing Error" in str(error) else None
@@ -303,6 +328,7 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
         raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles"
                                      f"{_why_no_triangles(data, suffix, path, limits)}")
     refuse_too_many(uri, len(loaded.faces), limits)
+    refuse_too_far(uri, loaded.bounds)
     if _may_hold_non_finite(data, suffix):  # (some triangles left out: trimesh says nothing)
         bad, total = _non_finite(data, suffix, path, limits)
         if bad:
