@@ -424,7 +424,8 @@ def test_a_mesh_with_a_coordinate_too_far_to_measure_is_refused_by_either_reader
     """A vertex at 1e200 (its own unit): vertices merge at 1e-8 as 64-bit integers (numpy's
     "invalid value encountered in cast"), its volume and inertia overflowed ("encloses no
     volume"), and collisions and render printed numpy's warnings: refused past
-    MAX_COORDINATE (U411) by either reader, one unused so far is no matter."""
+    MAX_COORDINATE (U411, where merging overflows) by either reader; an unused one is no
+    matter."""
     import warnings
 
     from urdftool.description.load import load
@@ -438,8 +439,8 @@ def test_a_mesh_with_a_coordinate_too_far_to_measure_is_refused_by_either_reader
         warnings.simplefilter("error")
         robot = load(str(_robot(tmp_path, name)))
         [finding] = [f for f in check_robot(robot) if f.code == "U411"]
-        assert "has a coordinate of 1e+200, past the 1e+10" in finding.message
-        with pytest.raises(MeshProblem, match="past the 1e"):
+        assert "has a coordinate of 1e+200, past the 4.612e+10" in finding.message
+        with pytest.raises(MeshProblem, match="past the 4.612e"):
             load_mesh(robot, name)
     (tmp_path / name).write_text(head + "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1e300 0 0\n"
                                         "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")

@@ -50,7 +50,6 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
                                         np.asarray(loaded.faces, dtype=np.int64))
             found = _Arrays(*arrays, {**metadata, **loaded.metadata}, merged=True)
         else:
-            refuse_too_far(uri, arrays[0])
             found = _Arrays(*arrays, metadata, unit=unit)
         refuse_too_many(uri, found.triangles, limits)
         return found, found.nbytes
@@ -129,6 +128,12 @@ class _Arrays:
         the unit and ``scale``; twice that, for rounding."""
         return 2 * 3 ** 0.5 * 10.0 ** -mesh_arrays.MERGE_DIGITS * abs(self._unit) * \
             max(abs(s) for s in scale)
+
+    def refuse_too_far(self, uri: str) -> None:
+        """:func:`.reading.refuse_too_far` of the vertices read, before they are merged (the
+        bounds found without merging have every coordinate within range)."""
+        if self._read is not None:
+            refuse_too_far(uri, self._read[0])
 
     def bounds(self, scale: tuple[float, float, float]):
         """The (2, 3) bounds of the merged vertices scaled by ``scale``, found without merging
@@ -303,9 +308,10 @@ def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
                                        lambda: _merged_scaled(arrays, scale),
                                        lambda: arrays.corners_read(scale),
                                        arrays.corner_slack(scale))
-        else:
+        else:  # merged: bounds decided above have every coordinate within the merge's range
             import numpy as np
 
+            arrays.refuse_too_far(uri)
             vertices, faces, watertight = _merged_scaled(arrays, scale)
             if scale != (1.0, 1.0, 1.0) and not np.isfinite(vertices).all():
                 raise beyond_range(uri, scale)

@@ -29,6 +29,7 @@ from urdftool.description.collada import parser
 from urdftool.description.xml import entity_uses
 from urdftool.description.files import TooLarge, inside, read_regular
 from urdftool.description.inputs import MeshLimits
+from urdftool.description.mesh_arrays import KEY_RANGE
 from urdftool.description.meshes.counting import triangle_count
 from urdftool.description.meshes.run_cache import once, stamp_of
 from urdftool.description.meshes.uris import resolve
@@ -138,10 +139,10 @@ def refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:
                                        f"limit of {limits.max_triangles}; decimate it")
 
 
-# [the mesh's own unit] the largest coordinate of a mesh measured: vertices merge at 1e-8
-# (mesh_arrays.MERGE_DIGITS) as 64-bit integers, which hold 9.2e18 (9.2e10 m); its volume and
-# inertia take the third and fifth powers
-MAX_COORDINATE = 1e10
+# [the mesh's own unit] beyond, a mesh is not measured: its vertices merge at 1e-8 as 64-bit
+# integers (mesh_arrays.KEY_RANGE, 4.6e10); its volume and inertia take the third and fifth
+# powers of what fits
+MAX_COORDINATE = KEY_RANGE
 
 
 def refuse_too_far(uri: str, vertices) -> None:
@@ -152,7 +153,7 @@ def refuse_too_far(uri: str, vertices) -> None:
     inertia."""
     if len(vertices):
         far = max(float(vertices.max()), -float(vertices.min()))
-        if not far <= MAX_COORDINATE:
+        if not far < MAX_COORDINATE:
             from urdftool.numbers import number
 
             raise MeshProblem("too-large", f"mesh '{uri}' has a coordinate of {number(far)}, "

@@ -471,8 +471,8 @@ def mesh_unsupported_format(robot):
 @rule("U411", "mesh-too-large", Severity.WARNING)
 def mesh_too_large(robot):
     """A mesh file is over the size or triangle limit (128 MiB, 2,000,000 triangles), or has a
-    coordinate past 1e10 (in its own unit: what urdftool measures within); not opened or not
-    measured.
+    coordinate past 4.6e10 (in its own unit: urdftool merges vertices in 64-bit integers of
+    1e-8); not opened or not measured.
 
     Collision checking and inertia computation with such meshes is slow, and a crafted file could
     exhaust memory. Use a decimated collision mesh.
