@@ -311,7 +311,7 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     try:
         try:
             with warnings.catch_warnings():  # numpy's, on vertices not finite or too far
-                # (merging them in integers): each is said by a finding (U416, U411) below
+                # (merging them in integers): each is said below (NOT_FINITE, refuse_too_far)
                 warnings.simplefilter("ignore", RuntimeWarning)
                 loaded = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh",
                                       process=True, resolver=_geometry_resolver(path, limits))

@@ -470,9 +470,10 @@ def mesh_unsupported_format(robot):
 
 @rule("U411", "mesh-too-large", Severity.WARNING)
 def mesh_too_large(robot):
-    """A mesh file is over the size or triangle limit (128 MiB, 2,000,000 triangles), or has a
-    coordinate past 4.6e10 (in its own unit: urdftool merges vertices in 64-bit integers of
-    1e-8); not opened or not measured.
+    """A mesh file is over the size or triangle limit (128 MiB, 2,000,000 triangles); not opened.
+
+    A mesh with a coordinate past 4.6e10 (in its own unit: urdftool merges vertices in 64-bit
+    integers of 1e-8) is not measured either.
 
     Collision checking and inertia computation with such meshes is slow, and a crafted file could
     exhaust memory. Use a decimated collision mesh.
@@ -673,10 +674,10 @@ def empty_package_name(robot):
 
 @rule("U416", "mesh-not-well-formed", Severity.WARNING)
 def mesh_not_well_formed(robot):
-    """A mesh file is not well-formed: a COLLADA (``.dae``) mesh is not well-formed XML, or
-    some of a mesh's triangles use vertices that are not finite numbers.
+    """A COLLADA (``.dae``) mesh is not well-formed XML, or a mesh has non-finite vertices.
 
-    assimp, through which RViz, Gazebo and MoveIt load meshes, reads such XML anyway, and so
+    Some of a mesh's triangles use vertices that are not finite numbers, or a COLLADA file's
+    XML is not well-formed. assimp, through which RViz, Gazebo and MoveIt load meshes, reads such XML anyway, and so
     does urdftool (as libxml2's recover mode repairs it, then checks the mesh); readers that
     need well-formed XML (pycollada, hence trimesh and tools built on them) refuse the file.
     A triangle on a vertex at ``nan``, ``inf`` or past the float range (``1e400``) is left out
