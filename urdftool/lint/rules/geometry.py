@@ -676,8 +676,7 @@ def empty_package_name(robot):
 def mesh_not_well_formed(robot):
     """A COLLADA (``.dae``) mesh is not well-formed XML, or a mesh has non-finite vertices.
 
-    Some of a mesh's triangles use vertices that are not finite numbers, or a COLLADA file's
-    XML is not well-formed. assimp, through which RViz, Gazebo and MoveIt load meshes, reads such XML anyway, and so
+    assimp, through which RViz, Gazebo and MoveIt load meshes, reads such XML anyway, and so
     does urdftool (as libxml2's recover mode repairs it, then checks the mesh); readers that
     need well-formed XML (pycollada, hence trimesh and tools built on them) refuse the file.
     A triangle on a vertex at ``nan``, ``inf`` or past the float range (``1e400``) is left out
