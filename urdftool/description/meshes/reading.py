@@ -40,8 +40,10 @@ NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was r
 # leaves them out), when some are kept
 NOT_FINITE = "urdftool_not_finite"
 # what a text mesh holding a number that is not finite holds (nan, inf, an exponent of three
-# digits: 1e400): only a sign, which :func:`_non_finite` counts exactly
-_NOT_FINITE_SIGN = re.compile(rb"(?i)nan|inf|[0-9.]e\+?0*[1-9][0-9]{2}")
+# digits: 1e400), each a word of its own (not "info", "nanometer" or a COLLADA id "ID3e600"):
+# only a sign, which :func:`_non_finite` counts exactly (a false one costs a second reading)
+_NOT_FINITE_SIGN = re.compile(rb"(?i)(?<![a-z0-9_#.])[-+]?(?:(?:nan|inf(?:inity)?)(?![a-z0-9_])|"
+                              rb"[0-9]*\.?[0-9]+e\+?0*[1-9][0-9]{2}(?![0-9a-z_]))")
 # The first line of a Git LFS pointer: what a clone without git-lfs holds instead of the file
 LFS_POINTER = b"version https://git-lfs.github.com/spec/"
 
