@@ -169,6 +169,43 @@ async def test_an_unsaved_edit_in_an_included_macro_file_rechecks_its_robot_unti
     await wait_until(lambda: codes(client, macro_uri) == [] and codes(client, uri) == [])
 
 
+TWO_URIS = ('<robot name="r"><link name="a"/><link name="b"/>\n<joint name="j" type="revolute">'
+            '<parent link="a"/><child link="b"/><axis xyz="0 0 1"/>\n'
+            '<limit lower="{}" upper="{}" effort="1" velocity="1"/></joint></robot>\n')
+
+
+@SHARED
+async def test_one_file_open_by_two_uris_is_one_document_to_every_check(client, tmp_path):
+    """Session 20 left it: two URIs of one path (``…/r.urdf`` and ``…/sub/../r.urdf``) were
+    one entry of the open documents, the URI opened last: an edit in the other was checked
+    in that one's buffer (the fix never seen) and published to it only (the other kept its
+    diagnostics), and once that one was closed the file was no longer open, its edits
+    ignored. Now each URI of the path is published to, the buffer edited last is the one a
+    check reads, and closing one leaves the file open by the other."""
+    folder = tmp_path / "two-uris"
+    folder.mkdir()
+    robot = folder / "r.urdf"
+    robot.write_text(TWO_URIS.format(1, -1))
+    first = open_document(client, robot)
+    second = folder.as_uri() + "/sub/../r.urdf"
+    client.text_document_did_open(types.DidOpenTextDocumentParams(
+        text_document=types.TextDocumentItem(uri=second, language_id="xml", version=1,
+                                             text=robot.read_text())))
+
+    def has(uri) -> bool:
+        return any(code == "U204" for _, code in codes(client, uri))
+
+    await wait_until(lambda: has(first) and has(second))
+    change_document(client, first, 2, TWO_URIS.format(-1, 1))
+    await wait_until(lambda: not has(first) and not has(second))
+    client.text_document_did_close(types.DidCloseTextDocumentParams(
+        text_document=types.TextDocumentIdentifier(uri=second)))
+    change_document(client, first, 3, TWO_URIS.format(2, -2))
+    await wait_until(lambda: has(first))
+    client.text_document_did_close(types.DidCloseTextDocumentParams(
+        text_document=types.TextDocumentIdentifier(uri=first)))
+
+
 @SHARED
 async def test_quick_changes_are_checked_once_at_their_last_version(client: LanguageClient,
                                                                      tmp_path):
@@ -587,6 +624,7 @@ def _opened(server, path: Path, version: int, text: str) -> tuple[str, str]:
     server.protocol.workspace.put_text_document(types.TextDocumentItem(
         uri=uri, language_id="xml", version=version, text=text))
     server.open[str(path)] = uri
+    server.aliases.setdefault(str(path), {})[uri] = None
     return str(path), uri
 
 
@@ -947,7 +985,7 @@ def test_the_servers_messages_hold_no_lone_surrogate(tmp_path):
     [answer] = [part for part in out.split(b"Content-Length: ") if b'"id": 3' in part]
     length, body = answer.split(b"\r\n\r\n", 1)
     assert int(length.split(b"\r\n")[0]) == len(body)
-    assert json.loads(body)["error"]["message"].endswith("x\ufffd\U0001F600")
+    assert json.loads(body)["error"]["message"].endswith("x\ufffdFF\U0001F600")
 
 
 def test_messages_pygls_cannot_read_are_logged_one_line_each_and_the_server_goes_on(tmp_path):

@@ -55,6 +55,7 @@ import time
 import traceback
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
+from urllib.parse import unquote
 
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
@@ -450,7 +451,9 @@ class UrdftoolServer(LanguageServer):
         self.checks = ThreadPoolExecutor(max_workers=jobs or _jobs(),
                                          thread_name_prefix="urdftool-check")
         self.running: set[threading.Event] = set()  # the cancel switch of each job running
-        self.open: dict[str, str] = {}  # path -> the URI the editor named it by
+        self.open: dict[str, str] = {}  # path -> the URI whose buffer a check reads
+        # path -> every URI open naming it, in order (one file, several URIs: `..`, `.`, `//`)
+        self.aliases: dict[str, dict[str, None]] = {}
         self.targets: dict[str, list[str]] = {}  # document path -> the robots it means
         self.published: dict[str, _Published] = {}  # robot path -> its diagnostics
         self.records: dict = {}  # robot path -> the record of its last check
@@ -488,6 +491,7 @@ class UrdftoolServer(LanguageServer):
         adopt(self.workspace, uri)
         path = self.path_of(uri)
         if path and kind_of(path) in ("robot", "companion"):
+            self.aliases.setdefault(path, {})[uri] = None
             self.open[path] = uri
             self.schedule(path, 0.0, retarget=True)
 
@@ -497,6 +501,8 @@ class UrdftoolServer(LanguageServer):
         again, each reading every open document from its buffer."""
         path = self.path_of(uri)
         if path in self.open:
+            if uri in self.aliases.get(path, ()):
+                self.open[path] = uri  # the buffer edited last is the file's, to a check
             self.schedule(path, self.debounce)
 
     def saved(self, uri: str) -> None:
@@ -544,6 +550,18 @@ class UrdftoolServer(LanguageServer):
         path = self.path_of(uri)
         if not path:
             return
+        uris = self.aliases.get(path, {})
+        for alias in [alias for alias in uris if unquote(alias) == unquote(uri)]:
+            del uris[alias]  # (pygls keeps one document for the URIs that unquote alike)
+            if alias != uri or path not in self.open:
+                continue
+            self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
+                uri=alias, diagnostics=[]))
+        if uris and path in self.open:  # still open by another URI: its buffer is checked
+            self.open[path] = next(reversed(uris))
+            self.schedule(path, 0.0, retarget=True)
+            return
+        self.aliases.pop(path, None)
         self.open.pop(path, None)
         task = self.pending.pop(path, None)
         if task:
@@ -682,8 +700,10 @@ class UrdftoolServer(LanguageServer):
         buffer = self._buffers().get(path) if path in self.open else None
         version = buffer.version if buffer is not None and versions == {buffer.version} \
             else None
-        self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
-            uri=self.uri_of(path), diagnostics=diagnostics, version=version))
+        read = self.uri_of(path)
+        for uri in self.aliases.get(path) or (read,):  # every URI the file is open by
+            self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
+                uri=uri, diagnostics=diagnostics, version=version if uri == read else None))
 
     def shutdown(self) -> None:
         """Stop every check (its worker is killed, its thread returns), then the server."""
@@ -715,7 +735,8 @@ class UrdftoolServer(LanguageServer):
     def document(self, uri: str) -> TextDocument | None:
         """The document open at ``uri``, None when the client has not opened it (pygls would
         read it from disk, or fail to: its FileNotFoundError was the client's internal error)."""
-        return self.workspace.get_text_document(uri) if self.path_of(uri) in self.open else None
+        held = {unquote(alias) for alias in self.aliases.get(self.path_of(uri) or "", ())}
+        return self.workspace.get_text_document(uri) if unquote(uri) in held else None
 
     def hover(self, params: types.HoverParams) -> types.Hover | None:
         document = self.document(params.text_document.uri)

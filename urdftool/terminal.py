@@ -58,11 +58,13 @@ class Terminal:
         self.say(f"urdftool: error: {error}", err=True)
         raise self.exit(2)
 
-    def refuse_bad_outputs(self, *paths, inputs=()) -> None:
+    def refuse_bad_outputs(self, *paths, inputs=(), also=()) -> None:
         """Exit 2 with one line when an output path given (None: not given) cannot be written:
-        its folder is missing or it is a folder, or it would replace an input of the command
+        its folder is missing or it is a folder, it would replace an input of the command
         (:func:`replaced_input`: ``check robot.urdf -o robot.urdf`` wrote its report over the
-        robot). Call it before the work."""
+        robot), or it names the file another output of the command (of ``paths`` or ``also``,
+        outputs checked elsewhere) names (``diff --render x.svg -o x.svg``: the picture written
+        over the report, which was lost). Call it before the work."""
         from urdftool.description.files import check_output
 
         try:
@@ -73,6 +75,14 @@ class Terminal:
                     if replaced is not None:
                         raise UsageError(f"cannot write '{path}': it is {replaced}, which the "
                                          "output would replace; give another file name")
+            named = [path for path in (*paths, *also) if path is not None]
+            first: dict[str, int] = {}
+            for index, path in enumerate(named):
+                at = first.setdefault(_written_at(path), index)
+                if at != index:
+                    raise UsageError(f"'{path}' and '{named[at]}' name one file, where two "
+                                     "outputs of the command would be written; give another "
+                                     "file name")
         except UsageError as error:
             self.fail_usage(error)
 
@@ -86,6 +96,17 @@ class Terminal:
             write_file(path, data, rewrites)
         except UsageError as error:
             self.fail_usage(error)
+
+
+def _written_at(output) -> str:
+    """Where writing ``output`` puts a file: its name in its folder's real place (a link at
+    that name is replaced, never followed: files.write_file)."""
+    import os
+
+    from urdftool.description.files import real_path
+
+    output = os.path.abspath(output)
+    return os.path.join(real_path(os.path.dirname(output)), os.path.basename(output))
 
 
 def replaced_input(output, inputs) -> str | None:
@@ -102,8 +123,7 @@ def replaced_input(output, inputs) -> str | None:
     # followed: files.write_file), in its folder's real place
     if kind_of(output, follow=False) != "file":
         return None
-    output = os.path.abspath(output)
-    real = os.path.join(real_path(os.path.dirname(output)), os.path.basename(output))
+    real = _written_at(output)
     for word in inputs:
         word = os.fspath(word)
         if word == "-" or ":=" in word:

@@ -32,6 +32,22 @@ def test_deps_lists_the_same_files_as_xacro(run_cli):
     assert len(result.stdout.split()) == 5
 
 
+def test_deps_stays_one_line_whatever_the_names(run_cli, tmp_path):
+    """An included file named with a line break printed the list on two lines (and wrote
+    them so with -o): each name is terminal text (escape.text), the list one line."""
+    empty = '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>\n'
+    (tmp_path / "a b.xacro").write_text(empty)
+    (tmp_path / "e\n::error::x.xacro").write_text(empty)
+    (tmp_path / "top.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="a b.xacro"/><xacro:include filename="e&#10;::error::x.xacro"/>'
+        '<link name="l"/></robot>\n')
+    result = run_cli("xacro", tmp_path / "top.xacro", "--deps")
+    assert result.exit_code == 0 and "\n" not in result.stdout.rstrip("\n")
+    run_cli("xacro", tmp_path / "top.xacro", "--deps", "-o", tmp_path / "deps.txt")
+    assert (tmp_path / "deps.txt").read_text().count("\n") <= 1
+
+
 def test_old_flags_are_accepted(run_cli):
     plain = run_cli("xacro", HUMANOID).stdout
     assert run_cli("xacro", "--inorder", HUMANOID).stdout == plain

@@ -201,3 +201,23 @@ def test_an_output_named_dash_is_refused_not_a_file_named_dash(run_cli, tmp_path
     assert result.exit_code == 2, result.output
     assert len(result.stderr.strip().splitlines()) == 1, result.stderr
     assert not (tmp_path / "-").exists()
+
+
+@pytest.mark.parametrize("words", [
+    ["diff", "{robot}", "{robot}", "--render", "{out}.svg", "-o", "{out}.svg"],
+    ["diff", "{robot}", "{robot}", "--render", "{out}.svg", "-o", "{here}/sub/../{name}.svg"],
+    ["collisions", "{robot}", "--matrix", "--write-srdf", "{out}.svg", "--plot", "{out}.svg"],
+])
+def test_two_outputs_of_one_command_naming_one_file_are_refused_before_the_work(
+        run_cli, tmp_path, words):
+    """``diff --render x.svg -o x.svg`` wrote the report, then the picture over it (the
+    report lost, exit as if both were written); refuse_bad_outputs, the check of every
+    command's outputs before the work, refuses two outputs naming one file (its name in its
+    folder's real place)."""
+    robot = tmp_path / "robot.urdf"
+    robot.write_text(ROBOT)
+    (tmp_path / "sub").mkdir()
+    result = run_cli(*[word.format(robot=robot, out=tmp_path / "x", here=tmp_path, name="x")
+                       for word in words])
+    assert result.exit_code == 2, result.output
+    assert "name one file" in result.stderr and not (tmp_path / "x.svg").exists()

@@ -357,6 +357,20 @@ def test_a_target_past_what_the_solver_squares_is_refused_where_it_was_given(run
     assert ik.Target(np.array([0.0, 0.0, ik.MAX_TARGET])).position[2] == 1e150
 
 
+@pytest.mark.parametrize("command", ["ik", "workspace"])
+def test_a_point_the_kinematics_cannot_square_is_refused_at_its_option(run_cli, command):
+    """One step from the targets: ``--point 1e308 0 0`` (the point on --tip placed) gave
+    numpy's overflow warnings and "max reach inf m", "manipulability: min inf" in workspace;
+    build_chain, where every point enters, refuses it past numbers.SQUARABLE."""
+    words = ["--xyz", "0.1", "0", "0", "--seeds", "2"] if command == "ik" else ["--samples", "5"]
+    result = run_cli(command, HUMANOID, "--tip", "l_forearm_link", "--point", "1e308", "0", "0",
+                     *words)
+    assert result.exit_code == 2, result.output
+    assert "--point: point x 1e+308 m is past what the kinematics computes with" in \
+        result.output
+    assert "inf" not in result.output and "Warning" not in result.output
+
+
 def test_cli_check_reach(run_cli, humanoid, tmp_path):
     chain = build_chain(humanoid, "body_link", "l_forearm_link")
     pose = _fk_pose(chain, chain.row_of(np.array([0.2, 0.3, -0.4])))

@@ -257,6 +257,39 @@ def test_a_cache_folder_that_is_a_link_is_not_followed(robot, tmp_path, monkeypa
     assert checked and list(elsewhere.iterdir()) == []
 
 
+@pytest.mark.parametrize("planted", [None, ".gitignore", "CACHEDIR.TAG", "link"])
+def test_a_cache_folder_urdftool_did_not_make_is_marked_before_an_entry_or_not_used(
+        robot, tmp_path, planted):
+    """Session 20 left it: a cache folder committed in the repository (git keeps a folder that
+    holds a file) or planted got no CACHEDIR.TAG or .gitignore (they were written only into a
+    folder urdftool made), so the entries kept there, the absolute paths of every file read,
+    were untracked files for ``git add -A`` to commit; a ``.gitignore`` of ``!*`` planted
+    there did the same. Now the marks are written into any folder before an entry; a folder
+    holding other files of those names is written nothing (and they are left as they are)."""
+    cache_dir = tmp_path / "cache"
+    cache_dir.mkdir()
+    (cache_dir / "README").write_text("committed\n")
+    if planted == "link":
+        (tmp_path / "mine").write_text("# created by urdftool\n*\n")
+        (cache_dir / ".gitignore").symlink_to(tmp_path / "mine")
+    elif planted is not None:
+        (cache_dir / planted).write_text("!*\n")
+    run = check_paths([str(robot / "bot.urdf.xacro")], cache_dir=cache_dir, timeout=0,
+                      max_memory="0", jobs=1)
+    marks = {"CACHEDIR.TAG": cache_module._TAG, ".gitignore": "# created by urdftool\n*\n"}
+    if planted is None:
+        assert {name: (cache_dir / name).read_text() for name in marks} == marks
+        assert _entries(cache_dir) and not run.notes
+        return
+    assert not (cache_dir / f"v{cache_module.SCHEMA}").exists() or \
+        not list((cache_dir / f"v{cache_module.SCHEMA}").iterdir())
+    assert [note for note in run.notes if "did not write" in note], run.notes
+    if planted == "link":
+        assert (cache_dir / ".gitignore").is_symlink()
+    else:
+        assert (cache_dir / planted).read_text() == "!*\n"
+
+
 @pytest.mark.parametrize("kind", ["file", "run"])
 def test_an_entry_that_is_a_link_is_not_followed(robot, tmp_path, kind):
     cache_dir = tmp_path / "cache"

@@ -65,6 +65,22 @@ def test_settings_targets_apply_and_are_checked(tmp_path):
         check_paths([str(WELDED)], targets=("bullet",))
 
 
+@pytest.mark.parametrize("where", ["command line", "settings"])
+def test_a_target_spelt_otherwise_runs_the_rules_of_the_target_it_was_taken_for(tmp_path, where):
+    """``MUJOCO`` (`` Drake ``, ``MuJoCo@3.7``) was refused by no check, since parse_target
+    reads a name in any case, and matched no rule's target (Selection.allows compared the
+    word as given): the check ran none of the target's rules, without a word. Now the word is
+    what parse_target made of it (settings.checked_targets) wherever it is given."""
+    shutil.copy(WELDED, tmp_path / "robot.urdf")
+    (tmp_path / ".git").mkdir()
+    words = ("MUJOCO", " Drake ")
+    if where == "settings":
+        (tmp_path / "urdftool.toml").write_text('targets = ["MUJOCO", " Drake "]\n')
+    run = check_paths([str(tmp_path / "robot.urdf")], jobs=1, timeout=0,
+                      **({"targets": words} if where == "command line" else {}))
+    assert {"U928", "U944"} <= {f.code for f in run.results[0].findings}
+
+
 def test_every_machine_format_carries_the_target():
     result = load_and_check(str(WELDED), CheckOptions(selection=Selection(targets=("mujoco",))))
     result.findings = [f for f in result.findings if f.code == "U928"]

@@ -182,14 +182,16 @@ def test_json_stays_exact_in_ascii():
 def test_json_holds_no_unpaired_surrogate(writer):
     """A file name's undecodable byte (os.fsdecode: U+DCFF) or a YAML "\\ud800" is a surrogate
     code point: json writes it as an escape no strict reader takes (I-JSON); it is written as
-    U+FFFD, the rest exact (an astral character stays a pair)."""
+    U+FFFD and the byte's two hex digits (json_output.named), the rest exact (an astral
+    character stays a pair)."""
     from urdftool.report import json_output
     from tests.fuzz.forge import unpaired
 
     data = {"file": "dir\udcff/r.urdf", "k\ud800": ["\U0001F600", "a\\udcff", 1.5]}
     text = getattr(json_output, writer)(data)
     assert unpaired(text, writer) == [] and text.isascii()
-    assert json.loads(text) == {"file": "dir\ufffd/r.urdf", "k\ufffd": ["\U0001F600", "a\\udcff", 1.5]}
+    assert json.loads(text) == {"file": "dir\ufffdFF/r.urdf", "k\ufffdED\ufffdA0\ufffd80":
+                                ["\U0001F600", "a\\udcff", 1.5]}
 
 
 # ---- the scan: output written past urdftool.report.escape ------------------------------------

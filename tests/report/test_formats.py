@@ -296,8 +296,8 @@ def test_json_formats_keep_the_exact_text_in_valid_json(format_name):
     else:
         message = data["diagnostics"][0]["message"]
     # exact, but for the file name's undecodable byte (a surrogate code point), which no
-    # strict JSON reader takes unpaired: U+FFFD, as those readers read it
-    assert message == f"joint '{HOSTILE[:-1]}\ufffd': swap them"
+    # strict JSON reader takes unpaired: U+FFFD and the byte's hex digits (json_output.named)
+    assert message == f"joint '{HOSTILE[:-1]}\ufffdE9': swap them"
 
 
 def test_printable_escapes_every_control_format_and_separator_character():
@@ -348,3 +348,42 @@ def test_file_names_said_on_stderr_cannot_forge_lines(tmp_path, run_cli):
     assert [line for line in lines if "::error::x.xacro" in line] == [
         f"skipped {tmp_path}/m\\n::error::x.xacro: defines only macros or properties "
         "(a macro library)"]
+
+
+TWO_NAMES = [FileResult(name, [Finding("U204", "inverted-limits", Severity.ERROR, "swap them",
+                                       Location(name, 7, (Location(f"m{name}", 2),)))])
+             for name in ("bad\udcff.urdf", "bad\udcfe.urdf", "bad\ufffdFF.urdf")]
+
+
+@pytest.mark.parametrize("format_name", ["json", "json-lines", "gitlab", "rdjson", "sarif"])
+def test_two_names_that_are_not_utf8_are_told_apart_in_every_json_format(format_name):
+    """Session 20 left it: ``bad\\xff.urdf`` and ``bad\\xfe.urdf`` (and a name holding U+FFFD
+    itself) were all ``bad\\ufffd.urdf`` in json, json-lines, gitlab and rdjson, so two files
+    printed as one, and GitLab, which tells findings apart by fingerprint, had one fingerprint
+    for both. Every JSON format spells a name one way (json_output.named; SARIF's URIs: %FF),
+    its bytes given back by json_output.name_bytes."""
+    import os
+
+    stream = io.StringIO()
+    render(format_name, TWO_NAMES, stream)
+    text = stream.getvalue()
+    assert text.isascii() and "\\ud" not in text
+    documents = [json.loads(line) for line in text.splitlines()] if format_name == "json-lines" \
+        else [json.loads(text)]
+    if format_name == "sarif":
+        results = documents[0]["runs"][0]["results"]
+        names = [r["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] for r in results]
+        assert names == ["bad%FF.urdf", "bad%FE.urdf", "bad%EF%BF%BDFF.urdf"]
+        return
+    found = {"json": lambda d: [(f["file"], f["via"][0]["file"]) for f in d["diagnostics"]],
+             "json-lines": lambda d: [(d["file"], d["via"][0]["file"])],
+             "gitlab": lambda d: [(i["location"]["path"], i["fingerprint"]) for i in d],
+             "rdjson": lambda d: [(i["location"]["path"], i["related_locations"][0]["location"]
+                                   ["path"]) for i in d["diagnostics"]]}[format_name]
+    pairs = [pair for document in documents for pair in found(document)]
+    assert len(pairs) == 3 and len({first for first, _ in pairs}) == 3
+    assert len({second for _, second in pairs}) == 3  # the macro sites; gitlab: fingerprints
+    from urdftool.report.json_output import name_bytes
+
+    assert [os.fsdecode(name_bytes(first)) for first, _ in pairs] == \
+        [result.path for result in TWO_NAMES]

@@ -62,18 +62,35 @@ def test_the_least_length_is_never_more_than_the_length():
         assert _least_length(value, 10 ** 6) <= len(json.dumps(value))
 
 
-def test_paired_writes_a_lone_surrogates_escape_as_the_replacement_character_at_its_length():
-    # session 13: the language server's messages, written by pygls's json.dumps
+def test_paired_spells_a_lone_surrogate_as_every_json_document_does_and_keeps_the_length_true():
+    # session 13: the language server's messages, written by pygls's json.dumps; session 21:
+    # spelt as json_output.named spells it (U+FFFD and the byte's hex digits), the
+    # Content-Length made the new body's
     from urdftool.report.json_output import paired
 
     value = {"a": "x\udcff \U0001F600 \ud800", "b": "\\udcff", "c": "\\\udcff",
-             "d": "\ud83d\\ude00"}
+             "d": "\ud83d\\ude00", "e": "\ufffd"}
     data = json.dumps(value).encode()
-    fixed = paired(data)
-    assert len(fixed) == len(data)
-    assert json.loads(fixed) == {"a": "x\ufffd \U0001F600 \ufffd", "b": "\\udcff",
-                                 "c": "\\\ufffd", "d": "\ufffd\\ude00"}
+    assert json.loads(paired(data)) == {
+        "a": "x\ufffdFF \U0001F600 \ufffdED\ufffdA0\ufffd80", "b": "\\udcff",
+        "c": "\\\ufffdFF", "d": "\ufffdED\ufffdA0\ufffdBD\\ude00",
+        "e": "\ufffdEF\ufffdBF\ufffdBD"}
+    framed = paired(b"Content-Length: %d\r\nContent-Type: x\r\n\r\n" % len(data) + data)
+    head, body = framed.split(b"\r\n\r\n")
+    assert head == b"Content-Length: %d\r\nContent-Type: x" % len(body)
     assert paired(b'{"a": "plain"}') == b'{"a": "plain"}'
+
+
+def test_named_is_one_to_one_and_name_bytes_gives_the_name_back():
+    import os
+
+    from urdftool.report.json_output import name_bytes, named
+
+    names = ["bad\udcff.urdf", "bad\udcfe.urdf", "bad\ufffd.urdf", "bad\ufffdFF.urdf",
+             "bad\ufffdff.urdf", "bad.urdf", "b\u00e9\U0001F600", "\udcc3.urdf"]
+    spelt = [named(name) for name in names]
+    assert len(set(spelt)) == len(names) and named("bad.urdf") == "bad.urdf"
+    assert [os.fsdecode(name_bytes(text)) for text in spelt] == names
 
 
 def test_no_zero_is_signed_and_a_string_is_left_as_it_is():

@@ -78,7 +78,7 @@ def collisions(
     from urdftool.report.plot import PlotError
 
     refuse_bad_outputs(write_srdf)  # an SRDF written over the one it read is meant
-    refuse_bad_outputs(plot, render, inputs=words)
+    refuse_bad_outputs(plot, render, inputs=words, also=(write_srdf,))
     robot = single_robot("collisions", words, arg, package, {"--format": (format, FORMATS)}, [
         (not matrix and (write_srdf or check_srdf or plot or until_converged),
          "--write-srdf, --check-srdf, --plot and --until-converged need --matrix"),

@@ -91,6 +91,7 @@ def ik(
                            iterations=iterations, method=method.replace("-", " "))
     except ConfigError as error:
         fail_config(error, {"q": "--q", "xyz": "--xyz", "orientation": "--quat", "frame_q": "--target-q",
+                            "point": "--point",
                             "targets": "--targets" if targets else "--check-reach"
                             }[error.argument])
     except (FKError, IKError, UnknownName) as error:

@@ -52,7 +52,7 @@ def workspace(
                                   kinematics.mimics)
         chain = build_chain(robot, base, tip, start.values[0], kinematics, point)
     except ConfigError as error:
-        fail_config(error, "--q")
+        fail_config(error, "--point" if error.argument == "point" else "--q")
     except (FKError, IKError, UnknownName) as error:
         fail_at(robot, error)
     warn(start.warnings)

@@ -45,11 +45,13 @@ class ColladaProblem(Exception):
     """Why a COLLADA document gives no triangles: ``kind`` is 'corrupt' or 'too-large' (the
     kinds of :class:`urdftool.errors.MeshProblem`); ``message`` says what is wrong;
     ``not_well_formed`` when the XML itself is broken (a caller may read what libxml2's
-    recover mode makes of it, as viewers do)."""
+    recover mode makes of it, as viewers do); ``not_finite`` when a number the geometry uses is
+    not finite (a caller may let trimesh read the file, and say so)."""
 
     kind: str
     message: str
     not_well_formed: bool = False
+    not_finite: bool = False
 
     def __str__(self) -> str:
         return self.message
@@ -145,8 +147,8 @@ def _transform(element):
     sizes = {"matrix": 16, "translate": 3, "rotate": 4, "scale": 3, "lookat": 9}
     values = _floats32(element, f"<{kind}>", sizes[kind])
     if not np.all(np.isfinite(values)):
-        raise _corrupt(f"<{kind}> (line {element.sourceline}) holds a number that is not "
-                       "finite")
+        raise ColladaProblem("corrupt", f"<{kind}> (line {element.sourceline}) holds a number "
+                             "that is not finite", not_finite=True)
     matrix = np.identity(4, dtype=np.float32)
     if kind == "matrix":
         matrix = values.reshape(4, 4)
@@ -357,7 +359,8 @@ class _Document:
         else:
             kept, corners = positions[used].astype(np.float64), (np.cumsum(used) - 1)[corners]
         if not np.all(np.isfinite(kept)):
-            raise _corrupt(f"<{kind}> (line {line}) uses a position that is not finite")
+            raise ColladaProblem("corrupt", f"<{kind}> (line {line}) uses a position that is not "
+                                 "finite", not_finite=True)
         return kept, corners.reshape(-1, 3)
 
     def instances(self, scene) -> list:

@@ -372,7 +372,7 @@ def merged_bounds(vertices, unmerged):
         if plain is not column:
             np.copyto(plain, unmerged[:, axis])
         ends = (low, high) if plain is column else (int(plain.argmin()), int(plain.argmax()))
-        if not (abs(plain[ends[0]]) < _KEY_RANGE and abs(plain[ends[1]]) < _KEY_RANGE):
+        if not (abs(plain[ends[0]]) < KEY_RANGE and abs(plain[ends[1]]) < KEY_RANGE):
             return None
         for row in (low, high):
             if column[row] == 0:  # which zero min() and max() return depends on order
@@ -386,7 +386,7 @@ def merged_bounds(vertices, unmerged):
     return np.array(lows), np.array(highs)
 
 
-_KEY_RANGE = 2.0 ** 62 / 10 ** MERGE_DIGITS  # [m]: beyond, merge keys overflow int64
+KEY_RANGE = 2.0 ** 62 / 10 ** MERGE_DIGITS  # [m]: beyond, merge keys overflow int64
 
 
 def _merges_earlier(vertices, column, row: int, scratch) -> bool:

@@ -152,14 +152,36 @@ def reduced_model(full, locked: list[int], reference: np.ndarray):
     return reduced
 
 
+def refuse_far(what: str, position, computes: str, argument: str) -> None:
+    """ConfigError (its ``argument`` given) for a position with a coordinate past
+    :data:`~urdftool.numbers.SQUARABLE` [m]: ik's targets and the point on the tip (the
+    solver squares distances, the workspace its reach and manipulability)."""
+    from urdftool.errors import ConfigError
+    from urdftool.numbers import SQUARABLE, number
+
+    far = [f"{axis} {number(value)}" for axis, value in zip("xyz", position)
+           if not abs(value) <= SQUARABLE]
+    if far:
+        error = ConfigError(f"{what} {', '.join(far)} m is past what {computes} computes with "
+                            f"(at most {number(SQUARABLE)} m each)")
+        error.argument = argument
+        raise error
+
+
 def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None,
                 kinematics: KinematicModel | None = None, point=None) -> Chain:
     """The limb from ``base`` (default: the root link) to ``tip``; the variables off the limb
     stay at ``row`` (default: each variable's default); ``point`` [m] in the tip's frame is the
     point placed instead of the tip's origin (a hand's palm on a forearm link). UnknownLink for
     an unknown link (a name given by the user: a usage error in every command), IKError for a
-    limb without a moving joint."""
+    limb without a moving joint, ConfigError (argument ``point``) for a point whose coordinates
+    the solver and the workspace's reach and manipulability cannot square
+    (:data:`urdftool.numbers.SQUARABLE`, as ik's targets: ``--point 1e308 0 0`` was numpy's
+    overflow warnings and a reach of inf m)."""
     import pinocchio as pin
+
+    if point is not None:
+        refuse_far("point", point, "the kinematics", "point")
 
     kinematics = kinematics or KinematicModel(robot)
     full = kinematics.model

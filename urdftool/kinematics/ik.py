@@ -29,7 +29,7 @@ import numpy as np
 
 from urdftool.numbers import SQUARABLE, length, number, power
 from urdftool.errors import ConfigError, available
-from urdftool.kinematics.chain import Chain, frame_jacobian
+from urdftool.kinematics.chain import Chain, frame_jacobian, refuse_far
 
 TOLERANCE = 1e-6  # [m] and [rad]
 MAX_ITERATIONS = 100  # per seed
@@ -54,13 +54,7 @@ class Target:
     def __post_init__(self):
         """ConfigError for a position the solver cannot square (:data:`MAX_TARGET`): every
         target, from words, a file or a frame's pose, is made here."""
-        far = [f"{axis} {number(value)}" for axis, value in zip("xyz", self.position)
-               if not abs(value) <= MAX_TARGET]
-        if far:
-            error = ConfigError(f"target position {', '.join(far)} m is past what the solver "
-                                f"computes with (at most {number(MAX_TARGET)} m each)")
-            error.argument = "xyz"
-            raise error
+        refuse_far("target position", self.position, "the solver", "xyz")
 
     def se3(self):
         import pinocchio as pin
@@ -358,8 +352,8 @@ def solve_limb(robot, tip: str, base: str | None = None, point=None,
             argument = "targets"
             wanted = read_targets(targets_file, degrees)
     except ConfigError as error:
-        error.argument = "xyz" if error.argument == "xyz" and argument == "orientation" \
-            else argument
+        error.argument = error.argument if error.argument == "point" else \
+            "xyz" if error.argument == "xyz" and argument == "orientation" else argument
         raise
     starts = seeds(chain, seeds_count, seed)
     return LimbSolutions(chain, [solve(chain, goal, starts, tolerance, iterations, method)

@@ -38,7 +38,8 @@ served from it without looking for settings or classifying the paths; any differ
 run goes file by file.
 
 The folder (``.urdftool_cache`` in the working directory, or ``--cache-dir``) comes with a
-``CACHEDIR.TAG`` and a ``.gitignore`` of ``*``. Robot files and even the cache folder may come
+``CACHEDIR.TAG`` and a ``.gitignore`` of ``*``, written into it before any entry whoever made
+it; a folder holding other files of those names is not written into. Robot files and even the cache folder may come
 from a stranger (a pull request can commit a ``.urdftool_cache`` with entries saying "no
 findings"), so:
 
@@ -81,6 +82,7 @@ _NOT_KEPT = ("U015", "U018", "U900")  # a budget stop or a crash: worth trying a
 _TAG = ("Signature: 8a477f597d28d172789f06886806bc55\n"
         "# This file is a cache directory tag created by urdftool.\n"
         "# For information about cache directory tags see https://bford.info/cachedir/\n")
+_MARKS = (("CACHEDIR.TAG", _TAG), (".gitignore", "# created by urdftool\n*\n"))
 
 
 def default_folder(environ=os.environ) -> Path | None:
@@ -100,6 +102,7 @@ class Cache:
         self._source = _source_stamp()
         self._verified: dict = {}  # (path, options) -> the record entries of a hit or a put
         self.failure: str | None = None  # why results could not be kept, the first time
+        self._marks: bool | None = None  # whether the folder carries urdftool's marks
 
     def unkept(self) -> str | None:
         """What a run says, once, when results could not be kept (a full or read-only file
@@ -261,6 +264,9 @@ class Cache:
                 return f"{it} is a symbolic link, which is never followed"
             if kind != "folder":
                 return f"{it} is not a folder"
+        if self._marks is False:
+            return ("it holds a CACHEDIR.TAG or .gitignore urdftool did not write (the entries "
+                    "kept there could be committed)")
         return "it could not be used"
 
     def _sign(self, entry_path: Path, body: str) -> str:
@@ -272,15 +278,33 @@ class Cache:
 
     def _usable_folder(self, create: bool = False) -> bool:
         """The folder (and its ``v<SCHEMA>``) exist as real folders, never links; made when
-        asked."""
+        asked; to be written into (``create``), it carries urdftool's marks
+        (:meth:`_marked`)."""
         for folder in (self.folder, self.folder / f"v{SCHEMA}"):
-            found = own_folder(folder, create)
-            if not found:
+            if not own_folder(folder, create):
                 return False  # missing, a link (to anywhere) or a file: not used
-            if found == "made" and folder == self.folder:
-                _write(folder / "CACHEDIR.TAG", _TAG)
-                _write(folder / ".gitignore", "# created by urdftool\n*\n")
+            if create and folder == self.folder and not self._marked():
+                return False
         return True
+
+    def _marked(self) -> bool:
+        """The folder holds urdftool's ``CACHEDIR.TAG`` and ``.gitignore`` of ``*``, each
+        written where there is none, whoever made the folder: one committed in the repository
+        (git keeps a folder that holds a file) or planted got none, and the entries kept there
+        (the absolute paths of every file a check read) were untracked files for ``git add -A``
+        to commit. A folder holding anything else of either name (a ``.gitignore`` of ``!*``, a
+        link, a folder) is not urdftool's: nothing is kept there, and nothing of it rewritten
+        (it may be a file of the repository's). Once a run (a cache is one run's)."""
+        if self._marks is None:
+            for name, text in _MARKS:
+                path = self.folder / name
+                if not kind_of(path, follow=False):
+                    _write(path, text)  # (OSError: the entry is not kept, and asks again)
+                elif read_own(path, len(text) + 1) != text.encode():
+                    self._marks = False
+                    return False
+            self._marks = True
+        return self._marks
 
 
 def _record(finding: Finding) -> dict:

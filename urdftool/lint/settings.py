@@ -477,20 +477,20 @@ def _targets(path: Path, value, key: str = "targets") -> list[str]:
         raise SettingsError(f"{path}: 'targets' must be a list of simulator names, such as "
                             f"[\"mujoco\", \"gz\"], not {shown(value)}")
     try:
-        checked_targets(value)
+        return list(checked_targets(value))
     except UsageError as error:
         raise SettingsError(f"{path}: 'targets': {error}") from None
-    return value
 
 
 def checked_targets(values: Iterable[str]) -> tuple[str, ...]:
-    """The targets as given (comma-separated values split); UsageError for an unknown name."""
+    """The targets as given (comma-separated values split), each as :func:`parse_target`
+    reads it (``MUJOCO``, `` Gz @ 8 `` are ``mujoco``, ``gz@8``), each once; UsageError for an
+    unknown name. The one spelling every consumer matches: ``MUJOCO`` was taken as mujoco
+    here and then matched no rule's target (``Selection.allows``), so the mujoco rules did
+    not run, without a word."""
     from urdftool.simulators import parse_target
 
-    words = tuple(_codes(values))
-    for word in words:
-        parse_target(word)
-    return words
+    return tuple(dict.fromkeys(str(parse_target(word)) for word in _codes(values)))
 
 
 def _inside_path(settings: Path, value, what: str) -> Path:

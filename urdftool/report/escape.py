@@ -36,8 +36,10 @@ Graphviz DOT                  :func:`dot`         a quoted ID ended early, DOT's
 YAML documents                :func:`yaml_text`   a scalar folded or broken onto a line of its
                                                   own; non-printable characters
 JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact, the
-rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``); a lone surrogate
-                              (``paired``: LSP)   is U+FFFD
+rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``); a name's
+                              (``paired``: LSP)   undecodable byte (a lone surrogate) is U+FFFD
+                                                  and its two hex digits, one to one
+                                                  (``json_output.named``; SARIF's URIs ``%FF``)
 ============================  ==================  =============================================
 
 tests/report/test_escape.py holds each function to its kind; tests/integration/

@@ -31,8 +31,9 @@ def dumps(data) -> str:
         text = _dumps(data, _ENCODE)
     # json writes a surrogate code point (a file name's undecodable byte, a YAML "\\ud800") as
     # an escape no strict reader takes (I-JSON, RFC 7493; SARIF uploads, serde, Go): rare, so
-    # looked for in the text, and only then the data cleaned and written again
-    return _dumps(_whole(data), _ENCODE) if "\\ud" in text else text
+    # looked for in the text, and only then the data written again as :func:`named` spells it
+    return _dumps(_whole(data), _ENCODE) if _NOT_TEXT_ESCAPE in text or "\\ufffd" in text \
+        else text
 
 
 def line(data) -> str:
@@ -46,23 +47,64 @@ def line(data) -> str:
     if _signed_zero(text):
         data = _unsigned(data)
         text = _ENCODE(data)
-    return _ENCODE(_whole(data)) if "\\ud" in text else text
+    return _ENCODE(_whole(data)) if _NOT_TEXT_ESCAPE in text or "\\ufffd" in text else text
 
 
 _ENCODE = json.JSONEncoder(allow_nan=False).encode
+_NOT_TEXT_ESCAPE = "\\ud"  # how json writes a surrogate code point (an escape, ASCII output)
+
+# JSON's one spelling of what is not text. A file name is bytes; Python reads one that is not
+# UTF-8 with each undecodable byte a lone surrogate (os.fsdecode: 0xff is U+DCFF), which JSON
+# cannot carry to a strict reader (I-JSON). Every JSON document urdftool writes (json,
+# json-lines, gitlab, rdjson, the analysis commands' documents, the language server's
+# messages) spells each such byte U+FFFD followed by its two hexadecimal digits (``bad\xff``
+# is "bad\ufffdFF"), and a U+FFFD of the text itself as its own three bytes so spelt
+# ("\ufffdEF\ufffdBF\ufffdBD"): a strict reader sees a replacement character where the
+# bytes were, as it always would, and the spelling is one to one (:func:`name_bytes` gives the
+# bytes back), so two names never print as one (two files' GitLab fingerprints were one). A
+# lone surrogate that is no byte (a YAML "\\ud800") is spelt as its UTF-8 bytes the same way.
+# SARIF's artifact locations are URIs and say the same bytes percent-encoded (``%FF``).
+_NOT_TEXT = re.compile("[\ud800-\udfff\ufffd]")
 
 
-# a \u escape of a surrogate, the backslashes before it (even: an escaped backslash's text)
-# and a low surrogate's escape after a high one (a pair: a character past U+FFFF)
+def _spelt(match) -> str:
+    char = match.group()
+    data = char.encode("utf-8", "surrogateescape" if "\udc80" <= char <= "\udcff" else
+                       "surrogatepass")
+    return "".join(f"\ufffd{byte:02X}" for byte in data)
+
+
+def named(value: str) -> str:
+    """``value`` (a name as Python decodes it) as every JSON document urdftool writes spells it:
+    each undecodable byte (a lone surrogate) and each U+FFFD as U+FFFD and the byte's two
+    hexadecimal digits; any other text as it is."""
+    return _NOT_TEXT.sub(_spelt, value)
+
+
+_SPELT_BYTE = re.compile("\ufffd([0-9A-F]{2})")
+
+
+def name_bytes(value: str) -> bytes:
+    """The bytes of a name :func:`named` spelt (``os.fsdecode`` of them is the name urdftool
+    read): its inverse, for a reader of urdftool's JSON that needs the file."""
+    parts = _SPELT_BYTE.split(value)
+    return b"".join(bytes([int(part, 16)]) if index % 2 else part.encode("utf-8")
+                    for index, part in enumerate(parts))
+
+
+# a \u escape of a surrogate or of U+FFFD, the backslashes before it (even: an escaped
+# backslash's text) and a low surrogate's escape after a high one (a pair: a character past
+# U+FFFF)
 _SURROGATE_ESCAPE = re.compile(rb"(\\+)u(d[89ab][0-9a-f]{2}(?:\\ud[c-f][0-9a-f]{2})?|"
-                               rb"d[c-f][0-9a-f]{2})", re.IGNORECASE)
+                               rb"d[c-f][0-9a-f]{2}|fffd)", re.IGNORECASE)
+_CONTENT_LENGTH = re.compile(rb"Content-Length: ([0-9]+)\r\n")
 
 
 def paired(data: bytes) -> bytes:
-    """JSON another library wrote (pygls: the language server's messages, with their headers)
-    with each escape of a lone surrogate written ``\\ufffd``, as :func:`dumps` writes the
-    character a strict reader would read: the same length, so a ``Content-Length`` before it
-    stays true; a pair (a character past U+FFFF) and an escaped backslash's text are left."""
+    """A message another library wrote (pygls: the language server's, its headers and its JSON
+    body) with each escape of a lone surrogate, and of U+FFFD, spelt as :func:`named` spells
+    it, and its ``Content-Length`` made the body's new length; a pair (a character past
+    U+FFFF) and an escaped backslash's text are left."""
     if b"\\u" not in data:
         return data
 
@@ -70,19 +112,23 @@ def paired(data: bytes) -> bytes:
         slashes, code = match.group(1), match.group(2)
         if len(slashes) % 2 == 0 or len(code) > 4:
             return match.group(0)
-        return slashes + b"ufffd"
+        spelt = named(chr(int(code, 16)))
+        return slashes[:-1] + json.dumps(spelt).encode()[1:-1]
 
-    return _SURROGATE_ESCAPE.sub(one, data)
-
-
-_SURROGATE = re.compile("[\ud800-\udfff]")
+    head, blank, body = data.partition(b"\r\n\r\n")
+    if not blank:
+        return _SURROGATE_ESCAPE.sub(one, data)
+    new = _SURROGATE_ESCAPE.sub(one, body)
+    if new == body:
+        return data
+    return _CONTENT_LENGTH.sub(b"Content-Length: %d\r\n" % len(new), head + b"\r\n", 1) + \
+        b"\r\n" + new
 
 
 def _whole(value):
-    """``value`` with every surrogate code point of its strings (keys too) replaced by U+FFFD,
-    as a strict reader of the JSON would read it."""
+    """``value`` with every string (keys too) spelt as :func:`named` spells it."""
     if isinstance(value, str):
-        return _SURROGATE.sub("\ufffd", value)
+        return named(value)
     if isinstance(value, dict):
         return {_whole(key): _whole(item) for key, item in value.items()}
     if isinstance(value, (list, tuple)):

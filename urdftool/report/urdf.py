@@ -123,10 +123,14 @@ def _qualified(tag: str, nsmap: dict, attribute: bool = False) -> str:
 
 def dependencies(robot) -> str:
     """What ``xacro --deps`` prints: the files the expansion included, space-separated, absolute
-    when the input was named by an absolute path (as xacro does)."""
+    when the input was named by an absolute path (as xacro does); each name as terminal text
+    (:func:`urdftool.report.escape.text`): a line break in a name is ``\\n``, so that the list
+    stays one line (it was two, on the terminal and in ``-o``'s file)."""
     import os
+
+    from urdftool.report.escape import text
 
     files = set(robot.files[1:])
     if os.path.isabs(robot.path):
         files = {os.path.abspath(file) for file in files}
-    return " ".join(sorted(files))
+    return " ".join(text(file) for file in sorted(files))

@@ -15,8 +15,9 @@ from pathlib import Path
 from urdftool.description import mesh_arrays
 from urdftool.description.collada import ColladaProblem
 from urdftool.description.inputs import MeshLimits
-from urdftool.description.meshes.reading import NOT_WELL_FORMED, beyond_range, check_size, \
-    collada_unit, finite_scale, mesh_bytes, read_once, recovered_collada, refuse_too_many
+from urdftool.description.meshes.reading import NOT_FINITE, NOT_WELL_FORMED, beyond_range, \
+    check_size, collada_unit, finite_scale, mesh_bytes, read_once, recovered_collada, \
+    refuse_too_far, refuse_too_many
 from urdftool.description.meshes.run_cache import once, stamp_of
 from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem
@@ -47,7 +48,7 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
 
             arrays = mesh_arrays.merged(np.asarray(loaded.vertices, dtype=np.float64),
                                         np.asarray(loaded.faces, dtype=np.int64))
-            found = _Arrays(*arrays, dict(loaded.metadata), merged=True)
+            found = _Arrays(*arrays, {**metadata, **loaded.metadata}, merged=True)
         else:
             found = _Arrays(*arrays, metadata, unit=unit)
         refuse_too_many(uri, found.triangles, limits)
@@ -74,7 +75,8 @@ def _collada_arrays(path: Path, uri: str, data: bytes, limits: MeshLimits):
     except ColladaProblem as problem:
         if problem.kind == "too-large":
             raise MeshProblem("too-large", f"mesh '{uri}': {problem}; not loaded") from None
-        return None, {}
+        # trimesh reads it (pycollada: a position that is not finite made another one)
+        return None, ({NOT_FINITE: str(problem)} if problem.not_finite else {})
     return arrays, metadata
 
 
@@ -126,6 +128,12 @@ class _Arrays:
         the unit and ``scale``; twice that, for rounding."""
         return 2 * 3 ** 0.5 * 10.0 ** -mesh_arrays.MERGE_DIGITS * abs(self._unit) * \
             max(abs(s) for s in scale)
+
+    def refuse_too_far(self, uri: str) -> None:
+        """:func:`.reading.refuse_too_far` of the vertices read, before they are merged (the
+        bounds found without merging have every coordinate within range)."""
+        if self._read is not None:
+            refuse_too_far(uri, self._read[0])
 
     def bounds(self, scale: tuple[float, float, float]):
         """The (2, 3) bounds of the merged vertices scaled by ``scale``, found without merging
@@ -300,9 +308,10 @@ def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
                                        lambda: _merged_scaled(arrays, scale),
                                        lambda: arrays.corners_read(scale),
                                        arrays.corner_slack(scale))
-        else:
+        else:  # merged: bounds decided above have every coordinate within the merge's range
             import numpy as np
 
+            arrays.refuse_too_far(uri)
             vertices, faces, watertight = _merged_scaled(arrays, scale)
             if scale != (1.0, 1.0, 1.0) and not np.isfinite(vertices).all():
                 raise beyond_range(uri, scale)

@@ -8,7 +8,9 @@
 - a COLLADA file that is not well-formed XML is read as libxml2's recover mode reads it (assimp,
   which RViz, Gazebo and MoveIt load meshes with, is as lenient); the loaded mesh says so in
   ``metadata[NOT_WELL_FORMED]``; it is scaled by the ``<unit meter>`` it declares, as RViz and
-  Gazebo do.
+  Gazebo do;
+- triangles whose vertices are not finite numbers are left out, as trimesh leaves them out:
+  none kept is "holds no triangles" saying why, some kept is said in ``metadata[NOT_FINITE]``.
 
 Meshes are read once per run (:mod:`.run_cache`) and kept per robot by scale
 (:func:`load_mesh`). trimesh is imported lazily.
@@ -27,12 +29,21 @@ from urdftool.description.collada import parser
 from urdftool.description.xml import entity_uses
 from urdftool.description.files import TooLarge, inside, read_regular
 from urdftool.description.inputs import MeshLimits
+from urdftool.description.mesh_arrays import KEY_RANGE
 from urdftool.description.meshes.counting import triangle_count
 from urdftool.description.meshes.run_cache import once, stamp_of
 from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem, described
 
 NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
+# mesh metadata: which of its triangles use vertices that are not finite numbers (trimesh
+# leaves them out), when some are kept
+NOT_FINITE = "urdftool_not_finite"
+# what a text mesh holding a number that is not finite holds (nan, inf, an exponent of three
+# digits: 1e400), each a word of its own (not "info", "nanometer" or a COLLADA id "ID3e600"):
+# only a sign, which :func:`_non_finite` counts exactly (a false one costs a second reading)
+_NOT_FINITE_SIGN = re.compile(rb"(?i)(?<![a-z0-9_#.])[-+]?(?:(?:nan|inf(?:inity)?)(?![a-z0-9_])|"
+                              rb"[0-9]*\.?[0-9]+e\+?0*[1-9][0-9]{2}(?![0-9a-z_]))")
 # The first line of a Git LFS pointer: what a clone without git-lfs holds instead of the file
 LFS_POINTER = b"version https://git-lfs.github.com/spec/"
 
@@ -130,6 +141,28 @@ def refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:
                                        f"limit of {limits.max_triangles}; decimate it")
 
 
+# [the mesh's own unit] beyond, a mesh is not measured: its vertices merge at 1e-8 as 64-bit
+# integers (mesh_arrays.KEY_RANGE, 4.6e10); its volume and inertia take the third and fifth
+# powers of what fits
+MAX_COORDINATE = KEY_RANGE
+
+
+def refuse_too_far(uri: str, vertices) -> None:
+    """MeshProblem (too-large) for a mesh with a coordinate past :data:`MAX_COORDINATE`, read
+    by either reader (urdftool's arrays, trimesh's: give its ``bounds``, of the vertices its
+    faces use): 1e200 merged its vertices by integers numpy could not make ("invalid value
+    encountered in cast"), overflowed its measures and was "encloses no volume" to
+    inertia."""
+    if len(vertices):
+        far = max(float(vertices.max()), -float(vertices.min()))
+        if not far < MAX_COORDINATE:
+            from urdftool.numbers import number
+
+            raise MeshProblem("too-large", f"mesh '{uri}' has a coordinate of {number(far)}, "
+                                           f"past the {number(MAX_COORDINATE)} (in its own "
+                                           "unit) urdftool measures meshes within")
+
+
 _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
 
 
@@ -223,24 +256,47 @@ def _why_no_triangles(data: bytes, suffix: str, path: Path, limits: MeshLimits) 
     ``1e400``: trimesh drops such faces as it processes the mesh; "holds no triangles" was all
     the finding said of a file holding one). The file is read again, unprocessed: only on this
     way out."""
-    import numpy
-    import trimesh
-
     mismatch = _binary_stl_mismatch(data) if suffix == ".stl" else ""
     if mismatch:
         return mismatch
-    try:
-        raw = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=False,
-                           resolver=_geometry_resolver(path, limits))
-        faces, vertices = numpy.asarray(raw.faces), numpy.asarray(raw.vertices, dtype=float)
-        bad = int((~numpy.isfinite(vertices[faces]).all(axis=(1, 2))).sum()) if len(faces) \
-            else 0
-    except Exception:  # the reason is a courtesy: the file holds no triangles either way
-        return ""
+    bad = _non_finite(data, suffix, path, limits)[0]
     if not bad:
         return ""
     return (f": its {bad} triangle{'s use' if bad > 1 else ' uses'} vertices that are not "
             f"finite numbers (nan, inf or past the float range), which trimesh drops")
+
+
+def _non_finite(data: bytes, suffix: str, path: Path, limits: MeshLimits) -> tuple[int, int]:
+    """(the triangles of the file whose vertices are not all finite numbers, its triangles),
+    the file read again by trimesh unprocessed; (0, 0) when it cannot be."""
+    import numpy
+    import trimesh
+
+    try:
+        raw = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=False,
+                           resolver=_geometry_resolver(path, limits))
+        faces, vertices = numpy.asarray(raw.faces), numpy.asarray(raw.vertices, dtype=float)
+        if not len(faces):
+            return 0, 0
+        return int((~numpy.isfinite(vertices[faces]).all(axis=(1, 2))).sum()), len(faces)
+    except Exception:  # the reason is a courtesy: the file holds no triangles either way
+        return 0, 0
+
+
+def _may_hold_non_finite(data: bytes, suffix: str) -> bool:
+    """Whether a mesh trimesh read may have had triangles left out for vertices that are not
+    finite: a binary STL's numbers looked at (numpy over the records), any other file's text
+    searched for :data:`_NOT_FINITE_SIGN` when it is text (no NUL in its first 64 KiB: a
+    binary PLY or glTF buffer's floats are not looked at)."""
+    if suffix == ".stl":
+        from urdftool.description.mesh_arrays import _stl_binary
+
+        raw = _stl_binary(data)
+        if raw is not None:
+            import numpy
+
+            return not numpy.isfinite(raw).all()
+    return b"\0" not in data[:65536] and _NOT_FINITE_SIGN.search(data) is not None
 
 
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
@@ -256,8 +312,11 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     suffix = path.suffix.lower()
     try:
         try:
-            loaded = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh",
-                                  process=True, resolver=_geometry_resolver(path, limits))
+            with warnings.catch_warnings():  # numpy's, on vertices not finite or too far
+                # (merging them in integers): each is said below (NOT_FINITE, refuse_too_far)
+                warnings.simplefilter("ignore", RuntimeWarning)
+                loaded = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh",
+                                      process=True, resolver=_geometry_resolver(path, limits))
         except Exception as error:  # pycollada refuses XML that is not well-formed
             recovered = recovered_collada(data) if suffix == ".dae" and \
                 "XML Parsing Error" in str(error) else None
@@ -272,6 +331,13 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
         raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles"
                                      f"{_why_no_triangles(data, suffix, path, limits)}")
     refuse_too_many(uri, len(loaded.faces), limits)
+    refuse_too_far(uri, loaded.bounds)
+    if _may_hold_non_finite(data, suffix):  # (some triangles left out: trimesh says nothing)
+        bad, total = _non_finite(data, suffix, path, limits)
+        if bad:
+            loaded.metadata[NOT_FINITE] = (f"{bad} of its {total} triangles use vertices that "
+                                           "are not finite numbers (nan, inf or past the float "
+                                           "range)")
     unit = collada_unit(data) if suffix == ".dae" else 1.0
     if unit != 1.0:
         loaded.apply_scale(unit)

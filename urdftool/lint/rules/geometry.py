@@ -480,6 +480,9 @@ def mesh_unsupported_format(robot):
 def mesh_too_large(robot):
     """A mesh file is over the size or triangle limit (128 MiB, 2,000,000 triangles); not opened.
 
+    A mesh with a coordinate past 4.6e10 (in its own unit: urdftool merges vertices in 64-bit
+    integers of 1e-8) is not measured either.
+
     Collision checking and inertia computation with such meshes is slow, and a crafted file could
     exhaust memory. Use a decimated collision mesh.
 
@@ -678,23 +681,32 @@ def empty_package_name(robot):
 
 @rule("U416", "mesh-not-well-formed", Severity.WARNING)
 def mesh_not_well_formed(robot):
-    """A COLLADA (``.dae``) mesh is not well-formed XML.
+    """A COLLADA (``.dae``) mesh is not well-formed XML, or a mesh has non-finite vertices.
 
-    assimp, through which RViz, Gazebo and MoveIt load meshes, reads it anyway, and so does
-    urdftool (as libxml2's recover mode repairs it, then checks the mesh); readers that need
-    well-formed XML (pycollada, hence trimesh and tools built on them) refuse the file.
+    assimp, through which RViz, Gazebo and MoveIt load meshes, reads such XML anyway, and so
+    does urdftool (as libxml2's recover mode repairs it, then checks the mesh); readers that
+    need well-formed XML (pycollada, hence trimesh and tools built on them) refuse the file.
+    A triangle on a vertex at ``nan``, ``inf`` or past the float range (``1e400``) is left out
+    by trimesh, so urdftool checks the rest (its bounds, volume and inertia) without it, while
+    what a renderer or a physics engine makes of it differs (a bounding box of ``nan``).
 
-    Bad: ``<node id="<STL_BINARY>">`` (a ``<`` inside an attribute value)
+    Bad: ``<node id="<STL_BINARY>">`` (a ``<`` inside an attribute value); ``v nan 0 0`` in an
+    OBJ used by a face
     Good: ``<node id="STL_BINARY">``, or the file exported again
     """
     outcomes = _mesh_outcomes(robot)
     if not outcomes:
         return  # (no mesh: the mesh readers are not imported)
-    from urdftool.description.meshes import NOT_WELL_FORMED
+    from urdftool.description.meshes import NOT_FINITE, NOT_WELL_FORMED
 
     for link, holder, shape, outcome in outcomes:
-        why = getattr(outcome, "metadata", {}).get(NOT_WELL_FORMED)
+        metadata = getattr(outcome, "metadata", {})
+        why = metadata.get(NOT_WELL_FORMED)
         if why:
             yield shape, (f"{_mesh_named(robot, link, holder, shape)} is not well-formed XML "
                           f"({why}); read as repaired, as assimp reads it, but XML-strict readers "
                           "(pycollada, trimesh) refuse it")
+        if metadata.get(NOT_FINITE):
+            yield shape, (f"{_mesh_named(robot, link, holder, shape)}: {metadata[NOT_FINITE]}; "
+                          "checked as trimesh reads it (without them), while renderers and "
+                          "physics engines read them as they are")
