@@ -5,7 +5,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 INSTALLED := $(VENV)/.installed
 
-.PHONY: demo test test-fast docs examples bench fuzz sweep-setup real-sweep-setup real-sweep clean
+.PHONY: demo test test-fast test-lowest docs examples bench fuzz sweep-setup real-sweep-setup real-sweep clean
 
 $(INSTALLED): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -30,6 +30,11 @@ test: $(INSTALLED)
 # The inner loop: unit tests only, without the corpus, parity, fuzz and documentation runs.
 test-fast: $(INSTALLED)
 	PYTHONDONTWRITEBYTECODE= $(PY) -m pytest -n auto --dist loadgroup -m "not integration and not network"
+
+# The lowest versions pyproject.toml allows, installed by uv into fresh environments
+# (tests/integration/test_lowest_versions.py): run it after changing a dependency's bound.
+test-lowest: $(INSTALLED)
+	$(PY) -m pytest -m slow tests/integration/test_lowest_versions.py
 
 # The documentation generated from the rules (docs/rules/, the table in docs/targets.md): run it
 # after adding or changing a rule, or after a merge; `make test` fails while a page is stale.

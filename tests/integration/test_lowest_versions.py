@@ -14,7 +14,9 @@ virtual environments: the lint-only install, whose lowest numpy is a 1.x, and th
 extra, whose lowest Pinocchio needs numpy 2. Each answers as urdftool answers here, with the
 newest versions: the same findings on the bundled robots and on every case, the same output of
 the analysis commands, and never a Python warning or a traceback. Marked ``network``: uv asks
-the package index (what it downloads once stays in its cache).
+the package index (what it downloads once stays in its cache), and ``slow``: a cold cache
+downloads about a gigabyte, which `make test` (kept under four minutes) does not pay; run it
+with `make test-lowest` after changing a bound.
 """
 
 from __future__ import annotations
@@ -34,7 +36,7 @@ UV = Path(sys.executable).parent / "uv"
 HIDE = ("import sys; sys.modules.update(pinocchio=None, fcl=None, yourdfpy=None, PIL=None); "
         "sys.argv = ['urdftool', *sys.argv[1:]]; from urdftool.cli import main; main()")
 
-pytestmark = [pytest.mark.network,
+pytestmark = [pytest.mark.network, pytest.mark.slow,  # minutes of downloads: `make test-lowest`
               pytest.mark.skipif(not UV.is_file(), reason="uv is not beside this Python (make)")]
 
 
