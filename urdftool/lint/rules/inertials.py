@@ -1066,11 +1066,11 @@ def _contact_spheres_only(robot, link, reach) -> bool:
     """Whether the rigid body of ``link`` is drawn by no visual and only collision spheres:
     contact points (a foot at the end of a shank, Stanford Pupper v3's no_visual URDF), not the
     body's extent, so a centre of mass outside them says nothing."""
-    if link_reach(robot, link, ("visual",), rigid=True).pieces:
-        return False
     shapes = [shape for name in reach.links if name in robot.links
               for shape in solids._link_shapes(robot, robot.links[name])["collision"][0]]
-    return bool(shapes) and all(shape.kind == "sphere" for shape in shapes)
+    if not shapes or any(shape.kind != "sphere" for shape in shapes):
+        return False  # (asked first: the visual reach measures meshes, +1.5 % of the corpus)
+    return not link_reach(robot, link, ("visual",), rigid=True).pieces
 
 
 @rule("U312", "com-outside-hull", Severity.WARNING)
