@@ -1065,7 +1065,13 @@ def _copied_joint_origin(robot, link, properties, read: tuple | None = None) -> 
 def _contact_spheres_only(robot, link, reach) -> bool:
     """Whether the rigid body of ``link`` is drawn by no visual and only collision spheres:
     contact points (a foot at the end of a shank, Stanford Pupper v3's no_visual URDF), not the
-    body's extent, so a centre of mass outside them says nothing."""
+    body's extent, so a centre of mass outside them says nothing. Once per rigid body (its
+    members' shapes are the body's: asked of each member, a body of n links cost n^2)."""
+    return robot.memo_for(_contact_spheres_only, solids.rigid_root(robot, link.get("name")),
+                          lambda: _drawn_by_spheres_alone(robot, link, reach))
+
+
+def _drawn_by_spheres_alone(robot, link, reach) -> bool:
     shapes = [shape for name in reach.links if name in robot.links
               for shape in solids._link_shapes(robot, robot.links[name])["collision"][0]]
     if not shapes or any(shape.kind != "sphere" for shape in shapes):
