@@ -767,3 +767,23 @@ def test_a_welded_body_is_measured_once_for_all_its_noted_links(tmp_path, monkey
     noted = [f for f in findings if f.severity == Severity.INFO and "negligible" in f.message]
     assert len(noted) == 30, [f.message for f in findings]
     assert len(calls) <= 2, len(calls)
+
+
+def test_u312_asks_whether_a_body_is_drawn_by_spheres_alone_once_per_body(tmp_path, monkeypatch):
+    """Session 21: the question gathered the shapes of every member of a rigid body for each
+    member (n^2: make bench's 10,000-link meshes robot took 40 s, not 12)."""
+    from urdftool.lint.rules import inertials
+
+    asked, drawn = [], inertials._drawn_by_spheres_alone
+    monkeypatch.setattr(inertials, "_drawn_by_spheres_alone",
+                        lambda robot, link, reach: asked.append(link.get("name"))
+                        or drawn(robot, link, reach))
+    inertial = ('<inertial><origin xyz="0 0 0.5"/><mass value="1"/>'
+                '<inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>')
+    links = "".join(f'<link name="l{i}">{inertial}<collision><geometry><sphere radius="0.01"/>'
+                    '</geometry></collision></link>' for i in range(12))
+    joints = "".join(f'<joint name="j{i}" type="fixed"><parent link="l0"/><child link="l{i}"/>'
+                     '</joint>' for i in range(1, 12))
+    (tmp_path / "r.urdf").write_text(f'<robot name="r">{links}{joints}</robot>')
+    load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(("U312",))))
+    assert len(asked) == 1, asked
