@@ -39,9 +39,9 @@ run goes file by file.
 
 The folder (``.urdftool_cache`` in the working directory, or ``--cache-dir``) comes with a
 ``CACHEDIR.TAG`` and a ``.gitignore`` of ``*``, written into it before any entry whoever made
-it; a folder holding other files of those names is not written into. Robot files and even the cache folder may come
-from a stranger (a pull request can commit a ``.urdftool_cache`` with entries saying "no
-findings"), so:
+it; a folder holding other files of those names is not written into. Robot files and even the
+cache folder may come from a stranger (a pull request can commit a ``.urdftool_cache`` with
+entries saying "no findings"), so:
 
 - each entry is signed (HMAC-SHA256) with a key kept outside the repository, in
   ``$XDG_CACHE_HOME/urdftool/key`` (``~/.cache``), made on first use in a folder only its
