@@ -21,12 +21,17 @@ pointer file is written, as a clone without LFS has it): both are reported, and 
 tests/integration/real_sweep/ABSENT.tsv (``--write-absent``), so that findings about them are
 judged as snapshot artefacts.
 
+One restore at a time writes into a destination: a second waits for the first (a lock file,
+``.restore.lock``, in the destination). Two at once removed each other's files from a folder the
+first then stamped as current.
+
 Exit code 0 when every repository was restored; 1 when some are missing from the mirror (named).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import os
 import re
@@ -259,6 +264,26 @@ def write_absent(rows: list[tuple[str, str, str]], path: Path = ABSENT) -> None:
         writer.writerows(sorted(rows))
 
 
+@contextlib.contextmanager
+def one_restore_at_a_time(dest: Path):
+    """Hold ``dest``'s lock for the block, waiting (and saying so) while another restore holds it."""
+    try:
+        import fcntl
+    except ImportError:  # not POSIX: no lock
+        yield
+        return
+    with open(dest / ".restore.lock", "ab") as lock:
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            print(f"another restore is writing into {dest}: waiting for it", file=sys.stderr)
+            fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--mirror", type=Path, default=DEFAULT_MIRROR)
@@ -271,8 +296,13 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     rows = [row for row in read_manifest(args.manifest)
             if not args.only or row["repository"] in args.only]
-    missing, absent = [], []
     args.dest.mkdir(parents=True, exist_ok=True)
+    with one_restore_at_a_time(args.dest):
+        return _restore_rows(args, rows)
+
+
+def _restore_rows(args: argparse.Namespace, rows: list[dict[str, str]]) -> int:
+    missing, absent = [], []
     for row in rows:
         repository, commit = row["repository"], row["commit"]
         dest = args.dest / folder_name(repository)
