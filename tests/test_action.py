@@ -44,6 +44,22 @@ def test_it_installs_this_checkout_and_uploads_sarif():
     assert upload["with"]["sarif_file"].endswith("urdftool.sarif")
 
 
+@pytest.mark.skipif(shutil.which("bash") is None, reason="needs bash")
+@pytest.mark.parametrize("planted", ["pip/__init__.py", "pip.py", "typing.py"])
+def test_the_install_step_imports_nothing_from_the_checked_repository(tmp_path, planted):
+    """The install step starts in the checked repository: ``python -m pip`` put that folder
+    first on sys.path, so a pull request's ``pip/__init__.py`` (or a module pip imports) ran
+    instead of pip, with the workflow's token. ``python -I`` leaves the folder out; pip itself
+    fails here on an action path that does not exist, offline, without installing anything."""
+    work = tmp_path / "work"
+    (work / planted).parent.mkdir(parents=True, exist_ok=True)
+    marker = tmp_path / "ran"
+    (work / planted).write_text(f"open({str(marker)!r}, 'w').write('ran')\n")
+    _run(step("Install urdftool")["run"] + " || true", tmp_path, cwd=work,
+         GITHUB_ACTION_PATH=str(tmp_path / "absent"), EXTRAS="", PIP_NO_INDEX="1")
+    assert not marker.exists()
+
+
 def _run(script: str, tmp_path: Path, cwd: Path = ROOT, **env) -> subprocess.CompletedProcess:
     bin_dir = str(Path(sys.executable).parent)
     environment = {**os.environ, "PATH": f"{bin_dir}{os.pathsep}{os.environ['PATH']}",

@@ -5,10 +5,10 @@
 >>> run.exit_code, [f.code for r in run.results for f in r.findings]
 
 The names below are imported on first use, so ``import urdftool`` (and ``urdftool --help``)
-stays fast: nothing heavy (lxml, numpy, typer, rich) is loaded until it is needed.
+stays fast: nothing heavy (lxml, numpy, typer, rich) is loaded until it is needed. It imports
+nothing at all: ``python -m urdftool`` runs it before :mod:`urdftool.__main__` takes the
+current folder off ``sys.path``.
 """
-
-from __future__ import annotations
 
 __version__ = "0.1.0"
 

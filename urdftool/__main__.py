@@ -43,13 +43,21 @@ The door acts on its process (forks it into a guardian, ends it with ``os._exit`
 it is the program: :func:`main` called from the top level of the script Python runs, decided
 once (:data:`PROGRAM`). A caller running the door inside its own program (a test runner's
 worker, with a thread of its own reading its orders) keeps its process, and gets SystemExit.
-"""
 
-from __future__ import annotations
+``python -m urdftool`` runs in the folder being checked, which Python puts first on
+``sys.path`` (``''`` or its name): a ``yaml.py`` or ``numpy.py`` committed there would be
+imported in place of the library. The door's first statement takes that entry out (no
+``from __future__`` line comes before it: that is an import too), before anything else is
+imported; ``-P``/``-I`` (Python's own guard) leave no such entry to take.
+"""
 
 import os
 import sys
-from contextlib import contextmanager
+
+if __name__ == "__main__" and not sys.flags.safe_path and sys.path[:1] in ([""], [os.getcwd()]):
+    del sys.path[0]
+
+from contextlib import contextmanager  # noqa: E402 (after the guard above)
 
 
 def main() -> None:

@@ -27,6 +27,29 @@ def test_python_m_urdftool_runs_the_command_line():
     assert broken.returncode == 1 and "U204" in broken.stdout, broken.stdout + broken.stderr
 
 
+def test_python_m_urdftool_imports_nothing_from_the_folder_it_runs_in(tmp_path):
+    """``python -m`` puts the current folder first on sys.path: a ``yaml.py``, ``numpy.py``
+    or ``dataclasses.py`` committed in the folder being checked ran in place of the module.
+    Every module this test process imported (urdftool's dependencies and the standard
+    library's), but those Python imports before ``-m`` runs, is planted there; none runs,
+    through the plain check nor through Typer."""
+    started = subprocess.run([sys.executable, "-c", "import sys; print(*sys.modules)"],
+                             capture_output=True, text=True, check=True).stdout.split()
+    planted = {name.partition(".")[0] for name in sys.modules} - set(started) - {"urdftool"}
+    marker = tmp_path / "ran"
+    for name in planted:
+        if not name.startswith("__"):
+            (tmp_path / f"{name}.py").write_text(f"open({str(marker)!r}, 'a').write('{name} ')\n")
+    (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    environment = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(ROOT), *filter(None, [os.environ.get("PYTHONPATH")])])}
+    for words in (["check", "--no-cache", "r.urdf"], ["fk", "r.urdf"]):
+        done = subprocess.run([sys.executable, "-m", "urdftool", *words], capture_output=True,
+                              text=True, cwd=tmp_path, env=environment, timeout=120)
+        assert not marker.exists(), (words, marker.read_text())
+        assert done.returncode == 0, (words, done.stderr)
+
+
 # ``urdftool check`` through the door, with the result cache
 ROBOT = """<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:include filename="parts.xacro"/>

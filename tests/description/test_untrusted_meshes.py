@@ -366,9 +366,21 @@ def _partly_not_finite(kind: str) -> tuple[str, bytes]:
     import struct
 
     triangles = [*_TETRAHEDRON, ((float("nan"), 0, 0), (1, 0, 0), (0, 1, 0))]
-    if kind == "obj":
-        return "m.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv nan 0 0\n" \
+    if kind in ("obj", "obj holding a NUL"):
+        return "m.obj", (b"# \0\n" if "NUL" in kind else b"") + \
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv nan 0 0\n" \
             b"f 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\nf 5 2 3\n"
+    if kind in ("binary ply", "glb", "gltf"):  # binary floats, the glTF's as base64
+        import numpy
+        import trimesh
+
+        points = numpy.array([corner for t in triangles for corner in t], dtype=float)
+        mesh = trimesh.Trimesh(points, numpy.arange(15).reshape(5, 3), process=False)
+        suffix = kind.split()[-1]
+        if suffix == "gltf":  # one file: {"model.gltf": its bytes}
+            return "m.gltf", mesh.export(file_type="gltf", embed_buffers=True)["model.gltf"]
+        return f"m.{suffix}", mesh.export(file_type=suffix, **(
+            {"encoding": "binary"} if suffix == "ply" else {}))
     if kind == "binary stl":
         return "m.stl", bytes(80) + struct.pack("<I", len(triangles)) + b"".join(
             struct.pack("<12f", 0, 0, 0, *(x for corner in t for x in corner)) + bytes(2)
@@ -400,11 +412,15 @@ def _partly_not_finite(kind: str) -> tuple[str, bytes]:
         '<instance_visual_scene url="#s"/></scene></COLLADA>').encode()
 
 
-@pytest.mark.parametrize("kind", ["obj", "binary stl", "ascii stl", "ply", "dae"])
+@pytest.mark.parametrize("kind", ["obj", "obj holding a NUL", "binary stl", "ascii stl", "ply",
+                                  "binary ply", "glb", "gltf", "dae"])
 def test_a_mesh_some_of_whose_triangles_are_not_finite_says_so(tmp_path, kind):
     """Session 20 left it: a mesh some of whose triangles use a vertex at nan (inf, 1e400) was
     checked on the rest without a word (trimesh leaves them out; pycollada made the COLLADA
-    one's nan another vertex), while renderers and physics engines read them as written."""
+    one's nan another vertex), while renderers and physics engines read them as written.
+    Session 24: a text mesh holding a NUL anywhere in its first 64 KiB, and the binary floats
+    of a PLY, a GLB and a glTF's buffer, were never looked at (one decision of what to look at:
+    ``reading._may_hold_non_finite``)."""
     from urdftool.description.load import load
     from urdftool.lint.engine import check_robot
 

@@ -66,6 +66,35 @@ def test_a_mimic_of_a_mimic_is_posed_as_urdftool_fk_poses_it(tmp_path):
         np.testing.assert_allclose(scene.frames[link], pose, atol=1e-9)
 
 
+@pytest.mark.parametrize("written, unit", [("1e308 1e308 1e308", "1 1 1"), ("1e-320 0 0", "1 0 0"),
+                                           ("0 0 1e-200", "0 0 1"), ("0 3 0", "0 1 0")])
+def test_an_axis_is_posed_and_drawn_as_urdftool_fk_reads_it(tmp_path, written, unit):
+    """yourdfpy rotated about the axis as written: a child on ``1e-320 0 0`` was posed at NaN
+    (drawn nowhere; numpy's "invalid value" warnings from the picture), on ``1e308 1e308 1e308``
+    it overflowed. Every axis is read by ``fk.unit_axis``: posed as its unit vector is."""
+    import warnings
+
+    def scene_of(axis: str):
+        text = ARM.replace('<axis xyz="0 1 0"/>', f'<axis xyz="{axis}"/>', 1)
+        return scene_model(load_text(tmp_path, text)).pose({"shoulder": 0.7})
+
+    expected = scene_of(unit)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = scene_of(written)
+    np.testing.assert_allclose(got.triangles, expected.triangles, atol=1e-12)
+    [(_, _, direction), _] = got.axes
+    norm = np.sqrt(sum(float(u) ** 2 for u in unit.split()))
+    np.testing.assert_allclose(direction, [float(u) / norm for u in unit.split()], atol=1e-12)
+
+
+def test_an_axis_with_no_direction_is_a_scene_error_at_its_joint(tmp_path):
+    robot = load_text(tmp_path, ARM.replace('<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>', 1))
+    with pytest.raises(SceneError, match="'shoulder': <axis xyz> '0 0 0' has no direction") as error:
+        posed(robot)
+    assert error.value.element is robot.joints["shoulder"]
+
+
 def test_triangles_are_posed_coloured_and_owned(tmp_path):
     robot = load_text(tmp_path, ARM)
     scene, warnings = posed(robot, {"shoulder": "90"}, degrees=True)

@@ -29,10 +29,10 @@ from pathlib import Path
 
 import numpy as np
 
-from urdftool.numbers import length, number, unit
+from urdftool.numbers import number
 from urdftool.errors import DHError, UnknownLink, available
 from urdftool.description.urdf import MOVING
-from urdftool.description.values import origin as read_origin, parse_numbers
+from urdftool.description.values import origin as read_origin
 from urdftool.kinematics import transforms
 
 CONVENTIONS = ("standard", "modified")
@@ -354,12 +354,15 @@ def _origin(joint) -> np.ndarray:
 
 
 def _unit_axis(joint) -> np.ndarray:
-    element = joint.find("axis")
-    values, _ = parse_numbers(element.get("xyz", "1 0 0") if element is not None else "1 0 0", 3)
-    direction = unit(values) if values is not None else None  # scaled: 1e308 1e308 1e308 is one
-    if direction is None or length(values) < 1e-12:
-        raise DHError(f"joint '{joint.get('name')}': axis is missing a direction", element)
-    return np.array(direction)
+    """:func:`urdftool.kinematics.fk.unit_axis` (the one reading of an axis), its refusal a
+    DHError."""
+    from urdftool.errors import FKError
+    from urdftool.kinematics.fk import unit_axis
+
+    try:
+        return unit_axis(joint)
+    except FKError as error:
+        raise DHError(str(error), error.element) from None
 
 
 def _clean(value: float) -> float:

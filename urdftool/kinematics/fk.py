@@ -192,7 +192,7 @@ class KinematicModel:
         if kind not in MOVING:
             raise FKError(f"joint '{name}': unknown joint type '{kind}'", element)
         return _Joint(name, "prismatic" if kind == "prismatic" else "revolute", parent,
-                      placement, _axis(element), self._source(name), idx_q,
+                      placement, unit_axis(element), self._source(name), idx_q,
                       unbounded=kind == "continuous")
 
     def _coordinate_columns(self, joint: str, coordinates) -> tuple:
@@ -395,9 +395,11 @@ def _rotation(roll: float, pitch: float, yaw: float) -> list[list[float]]:
             [txz - twy, tyz + twx, 1.0 - (txx + tyy)]]
 
 
-def _axis(element) -> np.ndarray:
+def unit_axis(element) -> np.ndarray:
     """The joint's unit axis (URDF's default: x); within Eigen's ``isApprox`` of x, y or z,
-    that axis exactly, as Pinocchio models the joint."""
+    that axis exactly, as Pinocchio models the joint. The one reading of a joint's axis as a
+    direction (fk, dh, render's scene): scaled before it is squared (``1e308 1e308 1e308`` and
+    ``1e-320 0 0`` have one), FKError for an axis with none (``0 0 0``, not finite)."""
     from urdftool.description.values import parse_numbers
 
     axis_element = element.find("axis")

@@ -175,8 +175,7 @@ class SceneModel:
             if joint.type in MOVING and joint.parent in frames:
                 origin = joint.origin if joint.origin is not None else np.eye(4)
                 placed = frames[joint.parent] @ origin
-                direction = placed[:3, :3] @ np.asarray(joint.axis, dtype=float)
-                direction = unit(direction)  # scaled: no square overflows
+                direction = unit(placed[:3, :3] @ joint.axis)  # (a unit axis: _unit_axes)
                 if direction is not None:
                     axes.append((joint.name, placed[:3, 3].copy(), np.asarray(direction)))
         empty = np.zeros((0, 3))
@@ -214,6 +213,7 @@ def _yourdfpy(robot, collision: bool):
     _follow_variables(robot, root)
     try:
         model = yourdfpy.URDF._parse_robot(root)
+        _unit_axes(robot, model)
         urdf = yourdfpy.URDF(model, build_scene_graph=False, build_collision_scene_graph=False,
                              load_meshes=False, load_collision_meshes=False,
                              filename_handler=lambda fname: _contained(robot, fname))
@@ -223,12 +223,32 @@ def _yourdfpy(robot, collision: bool):
         else:
             urdf._scene = _scene_graph(urdf, collision)
         return urdf
+    except SceneError:
+        raise
     except KeyError as error:  # yourdfpy reads required attributes as attrib[name]
         raise SceneError(f"yourdfpy cannot build the scene: an element lacks its "
                          f"'{error.args[0]}' attribute; run 'urdftool check' for where") from None
     except Exception as error:  # yourdfpy raises what its parsing meets (ValueError, ...)
         raise SceneError(f"yourdfpy cannot build the scene ({described(error)}); "
                          "run 'urdftool check' for the cause") from None
+
+
+def _unit_axes(robot, model) -> None:
+    """Each moving joint's axis in yourdfpy's ``model`` as :func:`urdftool.kinematics.fk.unit_axis`
+    reads it (the one reading of an axis): yourdfpy rotated about the axis as written, so a
+    child on ``0 0 0`` or ``1e-320 0 0`` was posed at NaN (drawn nowhere, numpy's warnings) and
+    one on ``1e308 1e308 1e308`` overflowed. SceneError at the joint for an axis with no
+    direction."""
+    from urdftool.errors import FKError
+    from urdftool.kinematics.fk import unit_axis
+
+    for joint in model.joints:
+        element = robot.joints.get(joint.name)
+        if joint.type in MOVING and element is not None:
+            try:
+                joint.axis = unit_axis(element)
+            except FKError as error:
+                raise SceneError(str(error), error.element) from None
 
 
 def _scene_graph(urdf, collision: bool):

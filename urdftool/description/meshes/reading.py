@@ -285,9 +285,11 @@ def _non_finite(data: bytes, suffix: str, path: Path, limits: MeshLimits) -> tup
 
 def _may_hold_non_finite(data: bytes, suffix: str) -> bool:
     """Whether a mesh trimesh read may have had triangles left out for vertices that are not
-    finite: a binary STL's numbers looked at (numpy over the records), any other file's text
-    searched for :data:`_NOT_FINITE_SIGN` when it is text (no NUL in its first 64 KiB: a
-    binary PLY or glTF buffer's floats are not looked at)."""
+    finite, the one decision of which bytes to look at: a binary STL's numbers (numpy over the
+    records); a binary PLY's, a GLB's or a glTF's (its buffers binary, or base64, or files of
+    their own) always, as they have no cheap sign (read again to count them); any other file's
+    bytes searched for :data:`_NOT_FINITE_SIGN`, NUL or not (a NUL in a comment left an OBJ's
+    ``nan`` unlooked at; a false sign costs a second reading)."""
     if suffix == ".stl":
         from urdftool.description.mesh_arrays import _stl_binary
 
@@ -296,7 +298,10 @@ def _may_hold_non_finite(data: bytes, suffix: str) -> bool:
             import numpy
 
             return not numpy.isfinite(raw).all()
-    return b"\0" not in data[:65536] and _NOT_FINITE_SIGN.search(data) is not None
+    if suffix in (".glb", ".gltf") or (
+            suffix == ".ply" and b"format binary" in data[:data.find(b"end_header") + 1]):
+        return True
+    return _NOT_FINITE_SIGN.search(data) is not None
 
 
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
