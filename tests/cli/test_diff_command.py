@@ -83,6 +83,21 @@ def test_usage_errors_exit_2(run_cli, pair, args, message):
     assert message in result.output
 
 
+def test_chain_splits_at_the_colon_between_two_links(run_cli, pair, tmp_path):
+    # link names with ':' (a namespace written into them): 'arm:base:arm:hand' is the chain
+    # arm:base -> arm:hand, the only ':' with a link on each side
+    old, new = (tmp_path / "ns_old.urdf", tmp_path / "ns_new.urdf")
+    for named, path in zip(pair, (old, new)):
+        path.write_text(named.read_text().replace('"base"', '"arm:base"')
+                        .replace('"hand"', '"arm:hand"'))
+    result = run_cli("diff", old, new, "--chain", "arm:base:arm:hand")
+    assert result.exit_code == 1, result.output
+    assert "reach arm:base -> arm:hand:" in result.output
+    result = run_cli("diff", old, new, "--chain", "arm:base:arm:hnd")
+    assert result.exit_code == 2 and "link 'arm:hnd' does not exist" in result.output
+    assert "did you mean 'arm:hand'?" in result.output
+
+
 def test_a_side_that_does_not_load_exits_1_located(run_cli, pair, tmp_path):
     broken = tmp_path / "broken.urdf"
     broken.write_text("<robot name='x'><link name='a'>\n")

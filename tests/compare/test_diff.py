@@ -7,7 +7,8 @@ import math
 import pytest
 
 from conftest import load_text
-from urdftool.compare.diff import DiffOptions, diff
+from urdftool.compare.diff import DiffOptions, chain_ends, diff
+from urdftool.errors import UsageError
 
 ARM = """<?xml version="1.0"?>
 <robot name="arm">
@@ -145,6 +146,28 @@ def test_a_pair_that_newly_collides(tmp_path):
     pairs = {(c.link1, c.link2): c for c in result.effects.collisions}
     assert ("base", "fore") in pairs
     assert pairs[("base", "fore")].old_count == 0 < pairs[("base", "fore")].new_count
+
+
+@pytest.mark.parametrize("text, links, ends", [
+    ("base:tip", {"base", "tip"}, ("base", "tip")),
+    ("ns:base:ns:tip", {"ns:base", "ns:tip"}, ("ns:base", "ns:tip")),
+    ("a::b", {"a:", "b", "a", ":b"}, None),  # two splits name links: ambiguous
+    ("a:b:c", {"a:b", "c"}, ("a:b", "c")),
+    ("nope:tip", {"base", "tip"}, ("nope", "tip")),  # none: the first ':', reported unknown
+    ("ns:base:ns:tp", {"ns:base", "ns:tip"}, ("ns:base", "ns:tp")),  # one known end: 'ns:tp'
+])
+def test_a_chain_splits_at_the_colon_that_names_two_links(text, links, ends):
+    if ends is None:
+        with pytest.raises(UsageError, match="more than one chain"):
+            chain_ends(text, links)
+    else:
+        assert chain_ends(text, links) == ends
+
+
+@pytest.mark.parametrize("text", ["base", "base:", ":tip"])
+def test_a_chain_without_two_ends_is_a_usage_error(text):
+    with pytest.raises(UsageError, match="must be BASE:TIP"):
+        chain_ends(text, {"base", "tip"})
 
 
 def test_chain_reach(tmp_path):
