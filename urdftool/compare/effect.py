@@ -193,7 +193,7 @@ def _mass(robot, model, values) -> tuple[float, tuple]:
 
     from urdftool.physics.mass import declared
 
-    total, moment = 0.0, np.zeros(3)
+    moment = np.zeros(3)
     indices = {name: i for i, name in enumerate(model.links)}
     bodies = [(indices[name], declared(link)) for name, link in robot.links.items()
               if name in indices]
@@ -202,8 +202,8 @@ def _mass(robot, model, values) -> tuple[float, tuple]:
         return 0.0, (0.0, 0.0, 0.0)
     poses = model.link_poses(values, [i for i, _ in bodies])[0]
     for pose, (_, body) in zip(poses, bodies):
-        total += body.mass
         moment += body.mass * (pose[:3, :3] @ np.array(body.com) + pose[:3, 3])
+    total = math.fsum(body.mass for _, body in bodies)  # ten links of 0.1 kg weigh 1 kg, exactly
     com = moment / total if total else np.zeros(3)
     return float(total), tuple(float(x) for x in com)
 
