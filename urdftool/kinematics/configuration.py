@@ -193,13 +193,18 @@ class JointValues:
 
 def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
                  a: dict[str, str] | None = None, degrees: bool = False,
-                 floating_root: str | None = None) -> JointValues:
+                 floating_root: str | None = None,
+                 variables: list[Variable] | None = None) -> JointValues:
     """Positions, velocities and accelerations of ``robot``'s joints from ``{name: text}``;
     a bad one raises ConfigError whose ``argument`` is 'q', 'v' or 'a'. A joint not named in
     ``q`` takes its default, as in :func:`from_words`: 0, or mid-range when 0 is outside its
     limits (dynamics computed G(q) at 0 there, a pose fk, collisions and render never draw).
-    ``floating_root``: a free root joint of that name, whose coordinates are variables too."""
-    variables, mimics = variables_of(robot, floating_root), mimics_of(robot)
+    ``floating_root``: a free root joint of that name, whose coordinates are variables too.
+    ``variables``: those of the model the values are for, when not the robot's (a robot's own
+    free base held fixed has none: physics.dynamics.build)."""
+    if variables is None:
+        variables = variables_of(robot, floating_root)
+    mimics = mimics_of(robot)
     parsed = []
     for argument, words in (("q", q), ("v", v), ("a", a)):
         try:
