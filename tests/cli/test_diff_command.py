@@ -67,6 +67,29 @@ def test_render_overlays_old_and_new(run_cli, pair, tmp_path):
     assert blue > 5 and orange > 5 and grey.sum() > 1000
 
 
+@pytest.mark.parametrize("renamed", ["elbow2", "arm.elbow"])  # (a '.' as a coordinate's has)
+def test_render_poses_the_old_side_under_its_old_joint_names(run_cli, pair, tmp_path,
+                                                             monkeypatch, renamed):
+    """The old robot is drawn at the configuration where they differ most, its renamed joint
+    under its old name: 'arm.elbow' was taken as coordinate 'elbow' of a joint 'arm', so the
+    old arm was drawn with its elbow at 0 while the new one was bent."""
+    from urdftool.kinematics.scene import SceneModel
+
+    old, _ = pair
+    new = tmp_path / "renamed.urdf"
+    new.write_text(old.read_text().replace('"elbow"', f'"{renamed}"').replace(
+        '<axis xyz="0 1 0"/>\n    <limit lower="-2.0"', '<axis xyz="1 0 0"/>\n    <limit lower="-2.0"'))
+    poses, pose = [], SceneModel.pose
+    monkeypatch.setattr(SceneModel, "pose", lambda self, q=None, *rest: poses.append(dict(q))
+                        or pose(self, q, *rest))
+    result = run_cli("diff", old, new, "--render", tmp_path / "diff.png", "--no-collisions",
+                     "--samples", "20")
+    assert result.exit_code == 1, result.output
+    drawn_old, drawn_new = poses
+    assert drawn_new[renamed] != 0 and drawn_old == {"shoulder": drawn_new["shoulder"],
+                                                     "elbow": drawn_new[renamed]}
+
+
 @pytest.mark.parametrize("args, message", [
     (["{old}"], "diff takes OLD NEW, or --rev REV FILE"),
     (["{old}", "{new}", "--format", "html"], "--format must be one of"),

@@ -144,10 +144,8 @@ def _render(old, new, result, path, max_triangles) -> None:
     from urdftool.report.diff import change_detail
     from urdftool.report.picture import NEW, OLD, Layer, PictureOptions, write
 
-    worst = result.effects.worst if result.effects is not None else {}
-    back = {new_name: old_name for old_name, new_name in result.renames.joints.items()}
-    old_q = {back.get(name.partition(".")[0], name.partition(".")[0])
-             + name[len(name.partition(".")[0]):]: value for name, value in worst.items()}
+    worst, old_q = ((result.effects.worst, result.effects.worst_old)
+                    if result.effects is not None else ({}, {}))
     scenes = []
     for robot, q in ((old, old_q), (new, worst)):
         try:

@@ -67,6 +67,7 @@ class Effects:
     chains: list[ChainEffect] = field(default_factory=list)
     collisions: list[CollisionEffect] = field(default_factory=list)
     worst: dict[str, float] = field(default_factory=dict)
+    worst_old: dict[str, float] = field(default_factory=dict)  # the same row, the old names
     warnings: list[str] = field(default_factory=list)
 
     @property
@@ -161,6 +162,8 @@ def effects(old, new, renames: Renames, samples: int = 200, seed: int = 0,
     if len(common):
         worst = int(np.argmax(moved.max(axis=1) + turned.max(axis=1) * 1e-3))
         result.worst = {name: float(x) for name, x in zip(names, new_values[worst])}
+        result.worst_old = {v.name: float(x) for v, x in zip(old_model.variables,
+                                                             old_values[worst])}
     for side, robot, model, values in (("old", old, old_model, old_values),
                                        ("new", new, new_model, new_values)):
         mass, com = _mass(robot, model, values[:1])
