@@ -77,8 +77,9 @@ def test_render_poses_the_old_side_under_its_old_joint_names(run_cli, pair, tmp_
 
     old, _ = pair
     new = tmp_path / "renamed.urdf"
-    new.write_text(old.read_text().replace('"elbow"', f'"{renamed}"').replace(
-        '<axis xyz="0 1 0"/>\n    <limit lower="-2.0"', '<axis xyz="1 0 0"/>\n    <limit lower="-2.0"'))
+    bent = '<axis xyz="0 1 0"/>\n    <limit lower="-2.0"'  # the elbow's axis, turned
+    new.write_text(old.read_text().replace('"elbow"', f'"{renamed}"')
+                   .replace(bent, bent.replace("0 1 0", "1 0 0")))
     poses, pose = [], SceneModel.pose
     monkeypatch.setattr(SceneModel, "pose", lambda self, q=None, *rest: poses.append(dict(q))
                         or pose(self, q, *rest))

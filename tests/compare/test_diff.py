@@ -149,7 +149,8 @@ def test_an_rpy_is_compared_as_a_rotation(tmp_path):
     # (pi, pi, 0) turns as (0, 0, pi) does; (0, 0, 2 pi) as (0, 0, 0): the same frames
     same = (ARM.replace('<origin xyz="0 0 0.4"/>',
                         f'<origin xyz="0 0 0.4" rpy="{math.pi!r} {math.pi!r} 0"/>')
-            .replace('<origin xyz="0 0 0.3"/>', f'<origin xyz="0 0 0.3" rpy="0 0 {2 * math.pi!r}"/>'))
+            .replace('<origin xyz="0 0 0.3"/>',
+                     f'<origin xyz="0 0 0.3" rpy="0 0 {2 * math.pi!r}"/>'))
     old = ARM.replace('<origin xyz="0 0 0.4"/>', f'<origin xyz="0 0 0.4" rpy="0 0 {math.pi!r}"/>')
     result = compare(tmp_path / "a", same, old)
     assert result.changes == [], result.changes

@@ -143,7 +143,8 @@ def test_dynamics_matches_pinocchio_on_the_file(path):
         scale = max(1.0, float(np.abs(crba).max(initial=0.0)))
         assert np.allclose(result.M, crba[np.ix_(order, order)], atol=1e-9 * scale)
         gravity = pin.computeGeneralizedGravity(oracle, data, q)[order]
-        assert np.allclose(result.G, gravity, atol=1e-9 * max(1.0, np.abs(gravity).max(initial=0.0)))
+        assert np.allclose(result.G, gravity,
+                           atol=1e-9 * max(1.0, np.abs(gravity).max(initial=0.0)))
         assert result.mass == pytest.approx(math.fsum(masses), rel=1e-12)
 
 

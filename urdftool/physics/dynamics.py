@@ -81,8 +81,9 @@ def build(robot, floating: bool = False) -> Model:
     """A Pinocchio model of the robot (1-dof joints; planar/floating joints refused), its base
     fixed, or with ``floating`` free: a free-flyer root joint ``root_joint`` (as ``fk
     --floating``), whose six velocity variables come first. A robot with its own free base
-    (:func:`urdftool.kinematics.tree.own_free_base`) has that joint as its free root, named as it is, and no second;
-    fixed, it is held where its origin puts the base (Pinocchio's reduced model)."""
+    (:func:`urdftool.kinematics.tree.own_free_base`) has that joint as its free root, named
+    as it is, and no second; fixed, it is held where its origin puts the base (Pinocchio's
+    reduced model)."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
