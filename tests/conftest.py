@@ -327,11 +327,26 @@ else:
     _URDFDOM_ENV = None
 
 
+CHECK_URDF_TIMEOUT = 20.0  # [s]: it takes 0.01-0.1 s a file; on a cycle below the root it loops
+
+
 @functools.cache
-def check_urdf(path: Path) -> subprocess.CompletedProcess:
-    """check_urdf's verdict on ``path``, run once per path and session (files do not change)."""
-    return subprocess.run([CHECK_URDF, str(path)], capture_output=True, text=True, timeout=60,
-                          env=_URDFDOM_ENV)
+def check_urdf(path: Path, timeout: float = CHECK_URDF_TIMEOUT) -> subprocess.CompletedProcess:
+    """check_urdf's verdict on ``path``, run once per path and session (files do not change).
+    urdfdom never returns on a kinematic cycle below the root (a self-joint, or ``b -> c -> b``
+    under ``r -> b``: its tree walk loops); stopped after ``timeout``, it is a refusal (exit
+    status -9, saying so on stderr), as robot_state_publisher never starts on such a file."""
+    try:
+        return subprocess.run([CHECK_URDF, str(path)], capture_output=True, text=True,
+                              timeout=timeout, env=_URDFDOM_ENV)
+    except subprocess.TimeoutExpired as stopped:
+        return subprocess.CompletedProcess(
+            stopped.cmd, -9, _text(stopped.stdout), _text(stopped.stderr)
+            + f"check_urdf did not finish in {timeout:g} s (a kinematic cycle?)")
+
+
+def _text(output) -> str:
+    return output.decode("utf-8", "replace") if isinstance(output, bytes) else output or ""
 
 
 # ---- case files (tests/cases): one per rule, offending lines marked `expect: CODE` ----------

@@ -199,15 +199,17 @@ def split_words(words: list[str]) -> tuple[list[str], dict[str, str]]:
 
 
 def pairs(values: list[str], what: str, separator: str = "=",
-          strip: bool = False) -> dict[str, str]:
+          strip: bool = False, last: bool = False) -> dict[str, str]:
     """``NAME=VALUE`` option values as a dict; a malformed one is a usage error. The one
     NAME=VALUE parser: --arg, --package, --q, --v, --a.
 
     strip: remove blanks around each NAME (joint values: ``--q " elbow=1"``)
+    last: split at the last separator, not the first: a NAME that may hold it and a VALUE that
+        cannot (a joint named ``gain=2`` and its number: ``--q gain=2=0.5``)
     """
     result = {}
     for value in values:
-        name, sep, rest = value.partition(separator)
+        name, sep, rest = value.rpartition(separator) if last else value.partition(separator)
         name = name.strip() if strip else name
         if not sep or not name:
             raise UsageError(f"{what} must be NAME{separator}VALUE, got '{value}'")

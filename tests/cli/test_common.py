@@ -62,6 +62,25 @@ def test_the_same_options_with_what_they_act_on_run(arm, run_cli, words):
     assert result.exit_code == 0, result.output
 
 
+@pytest.mark.parametrize("command, option, key", [
+    ("fk", "--q", None), ("dynamics", "--q", "q"), ("dynamics", "--v", None),
+    ("dynamics", "--a", None), ("collisions", "--q", None),
+    ("ik", "--target-q", None), ("ik", "--q", None)])
+def test_a_joint_name_may_hold_an_equals_sign(tmp_path, run_cli, command, option, key):
+    # every command's joint values split at the last '=': 'gain=2=0.5' is joint 'gain=2' at 0.5
+    path = tmp_path / "gain.urdf"
+    path.write_text(ARM.replace('name="shoulder"', 'name="gain=2"'))
+    words = []
+    if command == "ik":
+        words = ["--tip", "upper"] + (["--xyz", "0.5", "0", "0"] if option == "--q" else
+                                      ["--target-frame", "upper"])
+    result = run_cli(command, path, *words, option, "gain=2=0.5", "-f", "json")
+    assert result.exit_code in (0, 1), result.output  # (collisions: 1 when a pair collides)
+    assert "does not exist" not in result.output and "gain" not in result.stderr
+    if key is not None:
+        assert json.loads(result.stdout)[key] == {"gain=2": 0.5}
+
+
 # every command with a JSON format, and the words it needs besides the file
 JSON_COMMANDS = [("fk", []), ("dynamics", []), ("inertia", []), ("collisions", []),
                  ("dh", ["--tip", "a"]), ("ik", ["--tip", "a", "--xyz", "0", "0", "0"]),

@@ -67,6 +67,30 @@ def test_render_overlays_old_and_new(run_cli, pair, tmp_path):
     assert blue > 5 and orange > 5 and grey.sum() > 1000
 
 
+@pytest.mark.parametrize("renamed", ["elbow2", "arm.elbow"])  # (a '.' as a coordinate's has)
+def test_render_poses_the_old_side_under_its_old_joint_names(run_cli, pair, tmp_path,
+                                                             monkeypatch, renamed):
+    """The old robot is drawn at the configuration where they differ most, its renamed joint
+    under its old name: 'arm.elbow' was taken as coordinate 'elbow' of a joint 'arm', so the
+    old arm was drawn with its elbow at 0 while the new one was bent."""
+    from urdftool.kinematics.scene import SceneModel
+
+    old, _ = pair
+    new = tmp_path / "renamed.urdf"
+    bent = '<axis xyz="0 1 0"/>\n    <limit lower="-2.0"'  # the elbow's axis, turned
+    new.write_text(old.read_text().replace('"elbow"', f'"{renamed}"')
+                   .replace(bent, bent.replace("0 1 0", "1 0 0")))
+    poses, pose = [], SceneModel.pose
+    monkeypatch.setattr(SceneModel, "pose", lambda self, q=None, *rest: poses.append(dict(q))
+                        or pose(self, q, *rest))
+    result = run_cli("diff", old, new, "--render", tmp_path / "diff.png", "--no-collisions",
+                     "--samples", "20")
+    assert result.exit_code == 1, result.output
+    drawn_old, drawn_new = poses
+    assert drawn_new[renamed] != 0 and drawn_old == {"shoulder": drawn_new["shoulder"],
+                                                     "elbow": drawn_new[renamed]}
+
+
 @pytest.mark.parametrize("args, message", [
     (["{old}"], "diff takes OLD NEW, or --rev REV FILE"),
     (["{old}", "{new}", "--format", "html"], "--format must be one of"),
@@ -81,6 +105,21 @@ def test_usage_errors_exit_2(run_cli, pair, args, message):
     result = run_cli("diff", *(a.format(old=old, new=new) for a in args))
     assert result.exit_code == 2, result.output
     assert message in result.output
+
+
+def test_chain_splits_at_the_colon_between_two_links(run_cli, pair, tmp_path):
+    # link names with ':' (a namespace written into them): 'arm:base:arm:hand' is the chain
+    # arm:base -> arm:hand, the only ':' with a link on each side
+    old, new = (tmp_path / "ns_old.urdf", tmp_path / "ns_new.urdf")
+    for named, path in zip(pair, (old, new)):
+        path.write_text(named.read_text().replace('"base"', '"arm:base"')
+                        .replace('"hand"', '"arm:hand"'))
+    result = run_cli("diff", old, new, "--chain", "arm:base:arm:hand")
+    assert result.exit_code == 1, result.output
+    assert "reach arm:base -> arm:hand:" in result.output
+    result = run_cli("diff", old, new, "--chain", "arm:base:arm:hnd")
+    assert result.exit_code == 2 and "link 'arm:hnd' does not exist" in result.output
+    assert "did you mean 'arm:hand'?" in result.output
 
 
 def test_a_side_that_does_not_load_exits_1_located(run_cli, pair, tmp_path):

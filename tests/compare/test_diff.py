@@ -7,7 +7,8 @@ import math
 import pytest
 
 from conftest import load_text
-from urdftool.compare.diff import DiffOptions, diff
+from urdftool.compare.diff import DiffOptions, chain_ends, diff
+from urdftool.errors import UsageError
 
 ARM = """<?xml version="1.0"?>
 <robot name="arm">
@@ -132,6 +133,45 @@ def test_added_and_removed_links_joints_and_geometry(tmp_path):
     assert ("removed", "link", "camera", "") in _fields(removed)
 
 
+def test_an_axis_is_compared_as_a_direction(tmp_path):
+    longer = ARM.replace('<axis xyz="0 1 0"/>', '<axis xyz="0 2 0"/>', 1)
+    result = compare(tmp_path / "a", longer)
+    assert result.equivalent and result.changes == []
+    turned = ARM.replace('<axis xyz="0 1 0"/>', '<axis xyz="1 1 0"/>', 1)
+    [change] = compare(tmp_path / "b", turned).changes
+    assert (change.name, change.field, change.unit) == ("shoulder", "axis", "rad")
+    assert change.delta == pytest.approx(math.pi / 4)
+    assert compare(tmp_path / "c", ARM.replace('<axis xyz="0 1 0"/>', '<axis xyz="0 -1 0"/>',
+                                               1)).changes[0].delta == pytest.approx(math.pi)
+
+
+def test_an_rpy_is_compared_as_a_rotation(tmp_path):
+    # (pi, pi, 0) turns as (0, 0, pi) does; (0, 0, 2 pi) as (0, 0, 0): the same frames
+    same = (ARM.replace('<origin xyz="0 0 0.4"/>',
+                        f'<origin xyz="0 0 0.4" rpy="{math.pi!r} {math.pi!r} 0"/>')
+            .replace('<origin xyz="0 0 0.3"/>',
+                     f'<origin xyz="0 0 0.3" rpy="0 0 {2 * math.pi!r}"/>'))
+    old = ARM.replace('<origin xyz="0 0 0.4"/>', f'<origin xyz="0 0 0.4" rpy="0 0 {math.pi!r}"/>')
+    result = compare(tmp_path / "a", same, old)
+    assert result.changes == [], result.changes
+    tilted = old.replace(f'rpy="0 0 {math.pi!r}"', f'rpy="0.01 0 {math.pi!r}"')
+    [change] = compare(tmp_path / "b", tilted, old).changes
+    assert (change.name, change.field, change.unit) == ("elbow", "origin.rpy", "rad")
+    assert change.delta == pytest.approx(0.01)
+
+
+def test_the_total_mass_is_summed_exactly(tmp_path):
+    # ten links of 0.1 kg weigh 1 kg (0.9999999999999999 summed one by one)
+    links = "".join(f'<link name="l{i}"><inertial><mass value="0.1"/><inertia ixx="0.001" '
+                    f'iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+                    f'<joint name="j{i}" type="fixed"><parent link="base"/><child link="l{i}"/>'
+                    f'</joint>' for i in range(10))
+    tens = f'<robot name="r"><link name="base"/>{links}</robot>'
+    moved = tens.replace('<child link="l9"/>', '<child link="l9"/><origin xyz="0 0 1"/>')
+    effects = compare(tmp_path, moved, tens).effects
+    assert (effects.old_mass, effects.new_mass) == (1.0, 1.0)
+
+
 def test_tolerance_hides_numeric_noise(tmp_path):
     noisy = ARM.replace('<origin xyz="0 0 0.4"/>', '<origin xyz="0 0 0.4000001"/>')
     assert not compare(tmp_path / "x", noisy).equivalent
@@ -145,6 +185,28 @@ def test_a_pair_that_newly_collides(tmp_path):
     pairs = {(c.link1, c.link2): c for c in result.effects.collisions}
     assert ("base", "fore") in pairs
     assert pairs[("base", "fore")].old_count == 0 < pairs[("base", "fore")].new_count
+
+
+@pytest.mark.parametrize("text, links, ends", [
+    ("base:tip", {"base", "tip"}, ("base", "tip")),
+    ("ns:base:ns:tip", {"ns:base", "ns:tip"}, ("ns:base", "ns:tip")),
+    ("a::b", {"a:", "b", "a", ":b"}, None),  # two splits name links: ambiguous
+    ("a:b:c", {"a:b", "c"}, ("a:b", "c")),
+    ("nope:tip", {"base", "tip"}, ("nope", "tip")),  # none: the first ':', reported unknown
+    ("ns:base:ns:tp", {"ns:base", "ns:tip"}, ("ns:base", "ns:tp")),  # one known end: 'ns:tp'
+])
+def test_a_chain_splits_at_the_colon_that_names_two_links(text, links, ends):
+    if ends is None:
+        with pytest.raises(UsageError, match="more than one chain"):
+            chain_ends(text, links)
+    else:
+        assert chain_ends(text, links) == ends
+
+
+@pytest.mark.parametrize("text", ["base", "base:", ":tip"])
+def test_a_chain_without_two_ends_is_a_usage_error(text):
+    with pytest.raises(UsageError, match="must be BASE:TIP"):
+        chain_ends(text, {"base", "tip"})
 
 
 def test_chain_reach(tmp_path):

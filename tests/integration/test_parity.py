@@ -75,6 +75,20 @@ def test_parity_fails_either_way():
     assert_parity("r.urdf", accepts, result("U301"))
 
 
+def test_a_check_urdf_that_never_returns_is_a_refusal(tmp_path):
+    """urdfdom loops on a cycle below the root (``b -> c -> b`` under ``r -> b``): check_urdf
+    never returns. Stopped after its timeout it refuses; a test that ran it on such a file
+    waited for ever."""
+    path = tmp_path / "cycle.urdf"
+    path.write_text('<robot name="r"><link name="r"/><link name="b"/><link name="c"/>'
+                    '<joint name="j0" type="fixed"><parent link="r"/><child link="b"/></joint>'
+                    '<joint name="j1" type="fixed"><parent link="b"/><child link="c"/></joint>'
+                    '<joint name="j2" type="fixed"><parent link="c"/><child link="b"/></joint>'
+                    '</robot>')
+    verdict = check_urdf(path, timeout=2.0)
+    assert verdict.returncode != 0 and "did not finish in 2 s" in verdict.stderr
+
+
 @pytest.mark.parametrize("case", CASE_PATHS, ids=[p.name for p in CASE_PATHS])
 def test_parity_on_case_files(case, tmp_path):
     """check_urdf reads the file itself, or urdftool's expansion of a xacro."""

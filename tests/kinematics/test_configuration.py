@@ -108,3 +108,21 @@ def test_a_joint_whose_limits_span_past_the_largest_float_is_sampled(tmp_path):
         '<limit lower="-1e308" upper="1e308" effort="1" velocity="1"/></joint></robot>')
     values = config.random(config.variables_of(load(str(robot))), 50, 0).values
     assert np.isfinite(values).all() and values.min() < -1e306 < 1e306 < values.max()
+
+
+@pytest.mark.parametrize("mimics, message", [
+    ({"b": "a"}, "joint 'b' mimics 'a': set 'a' instead"),
+    # a mimic of a mimic: the joint at the end of the chain (it said "set 'b'", refused in turn)
+    ({"c": "b", "b": "a"}, "joint 'c' mimics 'b', which mimics 'a': set 'a' instead"),
+    ({"d": "c", "c": "b", "b": "a"},
+     "joint 'd' mimics 'c', which follows 'a' through 1 more mimic joint(s): set 'a' instead"),
+    ({"c": "b", "b": "c"}, "joint 'c' mimics 'b', in a cycle of mimic joints: no joint sets it"),
+    ({"c": "b", "b": "fixed_one"}, "joint 'c' mimics 'b', which mimics 'fixed_one'; "
+                                   "'fixed_one' takes no value"),
+])
+def test_setting_a_mimic_joint_names_the_joint_to_set(mimics, message):
+    variables = [config.Variable("a", "a", "revolute", -1.0, 1.0)]
+    given = next(iter(mimics))
+    with pytest.raises(config.ConfigError) as error:
+        config.from_words(variables, {given: "0.5"}, mimics=mimics)
+    assert str(error.value) == message

@@ -424,17 +424,62 @@ def test_a_robot_without_a_moving_joint_has_no_gravity_load(tmp_path, run_cli):
 
 
 def test_a_joint_dynamics_refuses_is_named_at_its_line(tmp_path, run_cli):
-    """A floating joint (a free-flying base written into the URDF) is refused at its line, as
-    every refusal is; it was 'robot.urdf: error: ...', no line, nor the joint's type."""
+    """A floating joint below the base (not the robot's own free base: a camera on a free
+    mount) is refused at its line, as every refusal is; it was 'robot.urdf: error: ...', no
+    line, nor the joint's type."""
     path = tmp_path / "flying.urdf"
     path.write_text(RIGID.replace('<joint name="cam_joint" type="fixed">',
-                                  '<link name="world"/>\n  <joint name="free" type="floating">'
-                                  '<parent link="world"/><child link="base"/></joint>\n'
-                                  '  <joint name="cam_joint" type="fixed">'))
+                                  '<joint name="cam_joint"\n type="floating">'))
     result = run_cli("dynamics", path)
     assert result.exit_code == 1
-    assert f"{path}:8: error: joint 'free' is floating, of 6 degrees of freedom" in result.stderr
+    assert f"{path}:7: error: joint 'cam_joint' is floating, of 6 degrees of freedom" in \
+        result.stderr
     assert "Traceback" not in result.output + result.stderr
+
+
+def _own_free_base(text: str) -> str:
+    """``text``'s robot hung from a ``world`` link by a floating joint of its own, ``free``."""
+    return text.replace("</robot>", '<link name="world"/><joint name="free" type="floating">'
+                                    '<parent link="world"/><child link="base"/></joint></robot>')
+
+
+def test_a_robots_own_free_base_is_its_free_base(arm, tmp_path):
+    """A robot hung from ``world`` by a floating joint of its own: ``floating`` uses that joint
+    as the free base, named as the robot names it (it was refused, 'of 6 degrees of freedom',
+    with or without --floating); M(q), G(q) and tau are those of the free flyer added to the
+    robot without it; held fixed, the robot without it."""
+    path = tmp_path / "own.urdf"
+    path.write_text(_own_free_base(ARM))
+    own = build(load(path), floating=True)
+    assert own.root == "free" and own.joints == [
+        "free.x", "free.y", "free.z", "free.roll", "free.pitch", "free.yaw", "shoulder", "elbow"]
+    assert [v.name for v in own.variables][:6] == own.joints[:6]
+    (tmp_path / "arm.urdf").write_text(ARM)
+    added = build(load(tmp_path / "arm.urdf"), floating=True)
+    pose = [0.3, -0.2, 1.1, 0.4, -0.3, 1.2, 0.7, -0.5]
+    twist, accel = [0.5, -0.1, 0.2, 0.3, -0.6, 0.9, 1.5, -2.0], [0.1] * 8
+    results = [state(model, dict(zip(model.joints, pose)), dict(zip(model.joints, twist)),
+                     dict(zip(model.joints, accel))) for model in (own, added)]
+    for matrix in ("M", "G", "C", "tau"):
+        assert np.allclose(getattr(results[0], matrix), getattr(results[1], matrix),
+                           atol=1e-12), matrix
+    held, fixed = state(build(load(path)), {"elbow": 0.4}), state(arm, {"elbow": 0.4})
+    assert held.joints == ["shoulder", "elbow"] and held.root is None
+    assert np.allclose(held.M, fixed.M) and np.allclose(held.G, fixed.G)
+    assert held.mass == pytest.approx(fixed.mass)
+
+
+def test_cli_dynamics_of_a_robots_own_free_base(run_cli, tmp_path):
+    path = tmp_path / "own.urdf"
+    path.write_text(_own_free_base(ARM))
+    result = run_cli("dynamics", path, "--floating", "--q", "free.z=2", "-f", "json")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    assert data["base"] == "floating" and data["joints"][:6] == [
+        "free.x", "free.y", "free.z", "free.roll", "free.pitch", "free.yaw"]
+    assert "root_joint.x" not in data["joints"] and data["com"][2] == pytest.approx(2.0)
+    held = run_cli("dynamics", path, "--q", "free.z=2")  # held fixed: no coordinates to set
+    assert held.exit_code == 2 and "unknown joint 'free.z'" in held.output
 
 
 PASSIVE_ARM = UNLIMITED.replace(

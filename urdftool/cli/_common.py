@@ -94,9 +94,10 @@ def only_with(names: tuple[str, ...], needed: bool, what: str) -> tuple[bool, st
 
 
 def joint_words(values: list[str], option: str) -> dict[str, str]:
-    """``{joint: text}`` from an option's ``NAME=VALUE`` values; exit 2 when one is malformed."""
+    """``{joint: text}`` from an option's ``NAME=VALUE`` values, split at the last '=' (a
+    joint name may hold '=', a value does not); exit 2 when one is malformed."""
     try:
-        return pairs(values, option, strip=True)
+        return pairs(values, option, strip=True, last=True)
     except UsageError as error:
         fail_usage(error)
 

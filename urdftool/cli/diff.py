@@ -51,7 +51,7 @@ def diff(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.compare.diff import DiffOptions
+    from urdftool.compare.diff import DiffOptions, chain_ends
 
     refuse_bad_outputs(output, render, inputs=words)
     try:
@@ -65,11 +65,11 @@ def diff(
                              f"'{output_format}'")
         if render is not None and render.suffix.lower() not in (".png", ".svg"):
             raise UsageError(f"--render: '{render.name}' must end in .png or .svg")
-        chains = tuple(_chain(text) for text in chain)
+        for text in chain:
+            chain_ends(text, ())  # BASE:TIP before anything is loaded; split when it is
     except UsageError as error:
         fail_usage(error)
-    options = DiffOptions(tolerance, samples, seed, chains, not no_collisions,
-                          not no_companions)
+    options = DiffOptions(tolerance, samples, seed, (), not no_collisions, not no_companions)
     if rev:
         from urdftool.description.revision import checkout
 
@@ -78,23 +78,16 @@ def diff(
                 old = load_robot(str(old_path), args, _packages_at(packages, paths[0], tree))
                 old.display = f"{rev}:{old_path.relative_to(tree).as_posix()}"
                 new = load_robot(paths[0], args, packages)
-                code = _compare(old, new, options, output_format, output,
+                code = _compare(old, new, options, chain, output_format, output,
                                 (render, max_scene_triangles or None))
         except UsageError as error:
             fail_usage(error)
     else:
         old = load_robot(paths[0], args, packages)
         new = load_robot(paths[1], args, packages)
-        code = _compare(old, new, options, output_format, output,
+        code = _compare(old, new, options, chain, output_format, output,
                         (render, max_scene_triangles or None))
     raise typer.Exit(code)
-
-
-def _chain(text: str) -> tuple[str, str]:
-    base, _, tip = text.partition(":")
-    if not base or not tip:
-        raise UsageError(f"--chain must be BASE:TIP, got '{text}'")
-    return base, tip
 
 
 def _packages_at(packages: dict, path: str, tree: Path) -> dict:
@@ -112,15 +105,21 @@ def _packages_at(packages: dict, path: str, tree: Path) -> dict:
     return moved
 
 
-def _compare(old, new, options, output_format, output, drawing) -> int:
+def _compare(old, new, options, chains, output_format, output, drawing) -> int:
+    """``chains``: the ``--chain`` values as written (``BASE:TIP``), split among ``new``'s
+    links here (a link name may hold ':')."""
     import io
+    from dataclasses import replace
 
-    from urdftool.compare.diff import diff as compare
+    from urdftool.compare.diff import chain_ends, diff as compare
     from urdftool.errors import FKError, UnknownName
     from urdftool.report.diff import write
 
     try:
+        options = replace(options, chains=tuple(chain_ends(text, new.links) for text in chains))
         result = compare(old, new, options)
+    except UsageError as error:
+        fail_usage(error)
     except UnknownName as error:
         fail_usage(UsageError(f"--chain: {error}"))
     except FKError as error:
@@ -145,10 +144,8 @@ def _render(old, new, result, path, max_triangles) -> None:
     from urdftool.report.diff import change_detail
     from urdftool.report.picture import NEW, OLD, Layer, PictureOptions, write
 
-    worst = result.effects.worst if result.effects is not None else {}
-    back = {new_name: old_name for old_name, new_name in result.renames.joints.items()}
-    old_q = {back.get(name.partition(".")[0], name.partition(".")[0])
-             + name[len(name.partition(".")[0]):]: value for name, value in worst.items()}
+    worst, old_q = ((result.effects.worst, result.effects.worst_old)
+                    if result.effects is not None else ({}, {}))
     scenes = []
     for robot, q in ((old, old_q), (new, worst)):
         try:

@@ -46,7 +46,9 @@ def dynamics(
                                   "root_joint.x/.y/.z/.roll/.pitch/.yaw; --v and --a on it are "
                                   "its twist in its own frame (x, y, z, then roll, pitch, yaw: "
                                   "about its x, y, z axes); its six rows are the force and "
-                                  "moment on the base."),
+                                  "moment on the base. A robot hung from a massless root by a "
+                                  "floating joint of its own has that joint as its free base "
+                                  "(JOINT.x, ...), held fixed without --floating."),
     output_format: str = typer.Option("text", "--format", "-f", help="text or json."),
     max_matrix_rows: int = typer.Option(MAX_MATRIX_ROWS, "--max-matrix-rows", min=0, metavar="N",
                                         help="Refuse, before any work, a robot with more joint "
@@ -81,8 +83,7 @@ def dynamics(
     given = {name: joint_words(values, f"--{name}") for name, values in (("q", q), ("v", v),
                                                                          ("a", a))}
     try:
-        values = joint_values(robot, **given, degrees=deg,
-                              floating_root=model.root)
+        values = joint_values(robot, **given, degrees=deg, variables=model.variables)
     except ConfigError as error:
         fail_config(error, f"--{error.argument}")
     if support:

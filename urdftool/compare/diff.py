@@ -70,6 +70,28 @@ def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
     return result
 
 
+def chain_ends(text: str, links) -> tuple[str, str]:
+    """(base, tip) of a ``BASE:TIP`` chain named on the command line, split at the ':' that
+    names two of ``links`` (a link name may hold ':': ``arm:base:arm:tool0``); with no such ':'
+    at the first one with a link on one side, else at the first one, so that the unknown end
+    is the one reported (``arm:base:arm:hnd``: 'arm:hnd', not 'arm'). UsageError when
+    there is no ':', an end is empty, or two ':' name existing links (``a:b:c`` with links
+    ``a``, ``b:c``, ``a:b`` and ``c``)."""
+    from urdftool.errors import UsageError
+
+    splits = [(text[:at], text[at + 1:]) for at, char in enumerate(text) if char == ":"]
+    splits = [(base, tip) for base, tip in splits if base and tip]
+    if not splits:
+        raise UsageError(f"--chain must be BASE:TIP, got '{text}'")
+    known = [ends for ends in splits if ends[0] in links and ends[1] in links]
+    if len(known) > 1:
+        raise UsageError(f"--chain '{text}' names more than one chain: "
+                         + ", ".join(f"'{base}' -> '{tip}'" for base, tip in known))
+    if known:
+        return known[0]
+    return next((ends for ends in splits if ends[0] in links or ends[1] in links), splits[0])
+
+
 def _known_chains(old, new, found, chains) -> None:
     """UnknownLink for a ``chains`` link ``new`` does not have, or ``old`` under its old name,
     whether or not the effects are computed."""

@@ -67,6 +67,7 @@ class Effects:
     chains: list[ChainEffect] = field(default_factory=list)
     collisions: list[CollisionEffect] = field(default_factory=list)
     worst: dict[str, float] = field(default_factory=dict)
+    worst_old: dict[str, float] = field(default_factory=dict)  # the same row, the old names
     warnings: list[str] = field(default_factory=list)
 
     @property
@@ -161,6 +162,8 @@ def effects(old, new, renames: Renames, samples: int = 200, seed: int = 0,
     if len(common):
         worst = int(np.argmax(moved.max(axis=1) + turned.max(axis=1) * 1e-3))
         result.worst = {name: float(x) for name, x in zip(names, new_values[worst])}
+        result.worst_old = {v.name: float(x) for v, x in zip(old_model.variables,
+                                                             old_values[worst])}
     for side, robot, model, values in (("old", old, old_model, old_values),
                                        ("new", new, new_model, new_values)):
         mass, com = _mass(robot, model, values[:1])
@@ -193,7 +196,7 @@ def _mass(robot, model, values) -> tuple[float, tuple]:
 
     from urdftool.physics.mass import declared
 
-    total, moment = 0.0, np.zeros(3)
+    moment = np.zeros(3)
     indices = {name: i for i, name in enumerate(model.links)}
     bodies = [(indices[name], declared(link)) for name, link in robot.links.items()
               if name in indices]
@@ -202,8 +205,8 @@ def _mass(robot, model, values) -> tuple[float, tuple]:
         return 0.0, (0.0, 0.0, 0.0)
     poses = model.link_poses(values, [i for i, _ in bodies])[0]
     for pose, (_, body) in zip(poses, bodies):
-        total += body.mass
         moment += body.mass * (pose[:3, :3] @ np.array(body.com) + pose[:3, 3])
+    total = math.fsum(body.mass for _, body in bodies)  # ten links of 0.1 kg weigh 1 kg, exactly
     com = moment / total if total else np.zeros(3)
     return float(total), tuple(float(x) for x in com)
 

@@ -197,12 +197,43 @@ def _numeric_change(change: Change) -> Change:
     return change
 
 
+def _readable(value) -> bool:
+    return isinstance(value, tuple) and len(value) == 3 and \
+        all(isinstance(x, float) and math.isfinite(x) for x in value)
+
+
+def turn(key: str, old, new) -> float | None:
+    """The angle [rad] between two values of a field that is a rotation (an ``rpy``: its
+    triples are compared as the rotations they make, ``0 0 3.14159265`` and ``3.14159265
+    3.14159265 0`` being one) or a direction (a joint's ``axis``: ``0 0 2`` is ``0 0 1``);
+    None for any other field, or a value that is not three finite numbers (or a zero axis):
+    compared as written."""
+    if not (key == "axis" or key.endswith("rpy")) or not (_readable(old) and _readable(new)):
+        return None
+    from urdftool.physics import mat3
+
+    if key == "axis":
+        if not any(old) or not any(new):
+            return None
+        old, new = ([x / length(v) for x in v] for v in (old, new))  # (no overflow: 1e200)
+        return math.atan2(length(mat3.cross(old, new)), mat3.dot(old, new))
+    # R_old^T R_new: its angle from the skew part (sin) and the trace (cos), exact near 0
+    (a, b, c), (d, e, f), (g, h, i) = mat3.multiply(mat3.transpose(mat3.rpy_matrix(old)),
+                                                    mat3.rpy_matrix(new))
+    return math.atan2(length((h - f, c - g, d - b)) / 2.0, (a + e + i - 1.0) / 2.0)
+
+
 def compare_fields(element: str, name: str, old: dict, new: dict, tolerance: float,
                    old_name: str | None = None) -> list[Change]:
     changes = []
     for key in list(old) + [k for k in new if k not in old]:
         a, b = old.get(key), new.get(key)
-        if not same_value(a, b, tolerance):
+        angle = turn(key, a, b)
+        if angle is not None:
+            if angle > tolerance:
+                changes.append(Change("changed", element, name, key, a, b, old_name,
+                                      delta=angle, unit="rad"))
+        elif not same_value(a, b, tolerance):
             changes.append(_numeric_change(Change("changed", element, name, key, a, b,
                                                   old_name)))
     return changes

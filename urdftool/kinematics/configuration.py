@@ -193,13 +193,18 @@ class JointValues:
 
 def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
                  a: dict[str, str] | None = None, degrees: bool = False,
-                 floating_root: str | None = None) -> JointValues:
+                 floating_root: str | None = None,
+                 variables: list[Variable] | None = None) -> JointValues:
     """Positions, velocities and accelerations of ``robot``'s joints from ``{name: text}``;
     a bad one raises ConfigError whose ``argument`` is 'q', 'v' or 'a'. A joint not named in
     ``q`` takes its default, as in :func:`from_words`: 0, or mid-range when 0 is outside its
     limits (dynamics computed G(q) at 0 there, a pose fk, collisions and render never draw).
-    ``floating_root``: a free root joint of that name, whose coordinates are variables too."""
-    variables, mimics = variables_of(robot, floating_root), mimics_of(robot)
+    ``floating_root``: a free root joint of that name, whose coordinates are variables too.
+    ``variables``: those of the model the values are for, when not the robot's (a robot's own
+    free base held fixed has none: physics.dynamics.build)."""
+    if variables is None:
+        variables = variables_of(robot, floating_root)
+    mimics = mimics_of(robot)
     parsed = []
     for argument, words in (("q", q), ("v", v), ("a", a)):
         try:
@@ -426,10 +431,28 @@ def _column(index: dict, name: str, mimics: dict | None, where: str | None = Non
     if name in index:
         return index[name]
     if mimics and name in mimics:
-        raise ConfigError(f"joint '{name}' mimics '{mimics[name]}': set '{mimics[name]}' "
-                          "instead", where)
+        raise ConfigError(_set_instead(name, index, mimics), where)
     raise ConfigError(f"unknown joint '{shown_word(name)}'; " + available("joints", name, index),
                       where)
+
+
+def _set_instead(name: str, index: dict, mimics: dict) -> str:
+    """What to set in place of mimic joint ``name``: the joint its chain of mimics ends at (a
+    mimic of a mimic named its leader, itself a mimic that was refused in turn)."""
+    path = [name]
+    while path[-1] in mimics and path[-1] not in index:
+        if mimics[path[-1]] in path:
+            return (f"joint '{name}' mimics '{mimics[name]}', in a cycle of mimic joints: no "
+                    "joint sets it")
+        path.append(mimics[path[-1]])
+    said = f"joint '{name}' mimics '{path[1]}'"
+    if len(path) == 3:
+        said += f", which mimics '{path[2]}'"
+    elif len(path) > 3:
+        said += f", which follows '{path[-1]}' through {len(path) - 3} more mimic joint(s)"
+    if path[-1] not in index:
+        return f"{said}; '{path[-1]}' takes no value"
+    return f"{said}: set '{path[-1]}' instead"
 
 
 def _to_float(text: str, message: str, where: str | None = None) -> float:

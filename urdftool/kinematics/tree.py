@@ -29,6 +29,23 @@ def root_link(robot) -> str:
     return roots[0]
 
 
+def own_free_base(robot) -> str | None:
+    """The robot's own free base: a ``floating`` joint that is the only joint below a root
+    link without an ``<inertial>`` (``world`` -> ``base_link``, as a simulator's description
+    writes a free body), or None (also for a robot without one root). Pinocchio reads it as a
+    free flyer: a free base of the robot's, to be used as the base that ``--floating`` would
+    add above it. (Below a root with a mass, the root stays in the world and a floating joint
+    frees only what hangs from it: no free base of the robot.)"""
+    try:
+        root = root_link(robot)
+        below = children_by_link(robot).get(root, [])
+    except TreeError:
+        return None
+    if len(below) != 1 or robot.joints[below[0][0]].get("type") != "floating" or \
+            robot.links[root].find("inertial") is not None:
+        return None
+    return below[0][0]
+
 
 def pair_key(one: str, two: str) -> tuple[str, str]:
     """A pair of links as MoveIt stores it: the smaller name (byte order) first."""

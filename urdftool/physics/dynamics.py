@@ -80,15 +80,23 @@ class Model:
 def build(robot, floating: bool = False) -> Model:
     """A Pinocchio model of the robot (1-dof joints; planar/floating joints refused), its base
     fixed, or with ``floating`` free: a free-flyer root joint ``root_joint`` (as ``fk
-    --floating``), whose six velocity variables come first."""
+    --floating``), whose six velocity variables come first. A robot with its own free base
+    (:func:`urdftool.kinematics.tree.own_free_base`) has that joint as its free root, named
+    as it is, and no second; fixed, it is held where its origin puts the base (Pinocchio's
+    reduced model)."""
     import pinocchio as pin
 
     from urdftool.kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
     from urdftool.kinematics.fk import FLOATING_ROOT
     from urdftool.kinematics.native import build_model
+    from urdftool.kinematics.tree import own_free_base
 
-    root = FLOATING_ROOT if floating else None
-    model = build_model(robot, *((pin.JointModelFreeFlyer(), root) if floating else ()))
+    own = own_free_base(robot)
+    root = (own or FLOATING_ROOT) if floating else None
+    model = build_model(robot, *((pin.JointModelFreeFlyer(), root) if floating and not own
+                                 else ()))
+    if own and not floating:  # its free flyer locked at the neutral pose: a fixed base
+        model = pin.buildReducedModel(model, [model.getJointId(own)], pin.neutral(model))
     joints = [f"{root}.{c}" for c in FLOATING_COORDINATES] if floating else []
     for joint_id in range(2 if floating else 1, model.njoints):
         axis = getattr(model.joints[joint_id].extract(), "axis", None)  # unaligned joints
@@ -103,7 +111,10 @@ def build(robot, floating: bool = False) -> Model:
                                 f"{model.joints[joint_id].nv} degrees of freedom: dynamics takes "
                                 "revolute, continuous and prismatic joints only", element)
         joints.append(model.names[joint_id])
-    variables = variables_of(robot, root)
+    variables = variables_of(robot, None if own else root)
+    if own:  # its coordinates first when free, none when held
+        variables = [v for v in variables if v.joint == own and floating] + \
+            [v for v in variables if v.joint != own]
     names = {variable.name for variable in variables}
     try:
         known: dict = {}  # each joint's source found once along a chain of mimics

@@ -58,7 +58,8 @@ def change_line(change, quote=_quoted) -> str:
         return f"{change.kind} {change.element} {quote(change.name)}"
     line = (f"{change.element} {quote(change.name)}: {change.field} "
             f"{_value(change.old, quote)} -> {_value(change.new, quote)}"
-            + (f" {change.unit}" if change.unit and change.delta is not None else ""))
+            + (f" {change.unit}" if change.unit and change.delta is not None
+               and change.field != "axis" else ""))  # (an axis: a direction, turned by delta)
     amount = _amount(change)
     return line + (f" ({amount})" if amount else "")
 
