@@ -445,3 +445,31 @@ def test_a_shape_read_from_its_holders_grouped_children_is_the_shape_read_alone(
             if isinstance(holder.tag, str):
                 assert repr(solids.shape_of(holder, robot.grouped(holder))) == \
                     repr(solids.shape_of(holder)), text
+
+
+@pytest.mark.parametrize("links", [2, 5, 16])
+def test_held_box_is_inside_the_rigid_bounds_to_the_bit(tmp_path, links):
+    """Each member's held_box (its own box) is held by rigid_bounds' box, coordinate for
+    coordinate as the floats compare, for bodies walked from the member (up to GROUP_DIRECT
+    links) and a link alone; a link without geometry has none."""
+    from urdftool.physics import solids
+
+    robot = _robot(tmp_path, rigid_body_robot(links))
+    for name, link in robot.links.items():
+        held = solids.held_box(robot, link)
+        assert held == solids.link_bounds(robot, link)[0] and held is not None
+        (low, high), (rigid_low, rigid_high) = held, rigid_bounds(robot, link).bounds
+        assert all(r <= h for r, h in zip(rigid_low, low)), name
+        assert all(r >= h for r, h in zip(rigid_high, high)), name
+    assert solids.held_box(robot, _robot(tmp_path).links["tip"]) is None
+
+
+def test_held_box_of_a_member_of_a_larger_body_is_none(tmp_path):
+    """A body of more than GROUP_DIRECT links is measured in its root's frame and turned:
+    its box need not hold the member's own to the bit, so no box is offered."""
+    from urdftool.physics import solids
+
+    robot = _robot(tmp_path, rigid_body_robot(solids.GROUP_DIRECT + 1))
+    assert solids.held_box(robot, robot.links["l3"]) is None
+    alone = robot.links[f"l{solids.GROUP_DIRECT + 1}"]  # on the revolute joint: its own box
+    assert solids.held_box(robot, alone) == rigid_bounds(robot, alone).bounds is not None

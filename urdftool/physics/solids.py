@@ -450,6 +450,22 @@ def rigid_bounds(robot, link) -> RigidBounds:
     return robot.memo_for(rigid_bounds, link, lambda: _rigid_bounds(robot, link))
 
 
+def held_box(robot, link) -> tuple[mat3.Vector, mat3.Vector] | None:
+    """A box [m] in the link frame that :func:`rigid_bounds`' box holds to the bit (its min
+    corner's coordinates no larger, its max corner's no smaller), found without gathering
+    the link's rigid body: the link's own box, when its body's box is walked from it (a body
+    of at most :data:`GROUP_DIRECT` links, or the link alone: the walk starts with the own
+    box, and the least and the largest of more coordinates are no larger and no smaller;
+    one not a number comes later and is never taken). None without an own box, and for a
+    member of a larger body (measured in its root's frame and turned: its box need not hold
+    the own box to the bit). A question that the own box settles (a centre of mass inside
+    it, a bound that its size already meets) the body's box settles the same way."""
+    name = link.get("name")
+    if name in _fixed_neighbours(robot) and len(_bodies(robot)[name][1]) > GROUP_DIRECT:
+        return None
+    return _placed_corners(robot, robot.links.get(name, link))[1]
+
+
 def _rigid_bounds(robot, link) -> RigidBounds:
     name = link.get("name")
     if name not in _fixed_neighbours(robot):  # nothing fixed to it (most links): its own box

@@ -787,3 +787,96 @@ def test_u312_asks_whether_a_body_is_drawn_by_spheres_alone_once_per_body(tmp_pa
     (tmp_path / "r.urdf").write_text(f'<robot name="r">{links}{joints}</robot>')
     load_and_check(str(tmp_path / "r.urdf"), CheckOptions(selection=Selection(("U312",))))
     assert len(asked) == 1, asked
+
+
+def _asked_rigid_bounds(monkeypatch):
+    """The links whose rigid_bounds the rules ask for, recorded."""
+    from urdftool.physics import solids
+
+    asked, rigid_bounds = [], solids.rigid_bounds
+    monkeypatch.setattr(solids, "rigid_bounds",
+                        lambda robot, link: asked.append(link.get("name")) or
+                        rigid_bounds(robot, link))
+    return asked
+
+
+# base: a 1 cm cube at its origin; shell, fixed 1 m along x: a 20 cm cube (the body's box
+# reaches from x = -0.005 to 1.1)
+BODY = """<robot name="r"><link name="base"><inertial><origin xyz="{com}"/><mass value="1"/>
+  <inertia ixx="{i}" ixy="0" ixz="0" iyy="{i}" iyz="0" izz="{i}"/></inertial>
+  <collision><geometry><box size="0.01 0.01 0.01"/></geometry></collision></link>
+  <link name="shell"><visual><geometry><box size="0.2 0.2 0.2"/></geometry></visual></link>
+  <joint name="f" type="fixed"><parent link="base"/><child link="shell"/>
+    <origin xyz="1 0 0"/></joint></robot>"""
+
+
+@pytest.mark.parametrize("com, i, settled", [
+    ("0 0 0.02", 1e-6, True),  # near its own 1 cm cube (within 5 cm), a tiny trace: settled
+    ("1 0 0", 1e-6, False),    # 1 m outside its own box, inside the shell: the body asked
+    ("0 0 0.02", 0.5, False),  # the trace beyond its own box's bound: the body asked (U316)
+])
+def test_u307_and_u316_ask_the_whole_body_only_when_the_own_box_does_not_settle(
+        tmp_path, monkeypatch, com, i, settled):
+    """U307 and U316 judge a member of a small rigid body from its own box first (the body's
+    box holds it: what it settles, the body's settles the same way), and gather the body only
+    when that does not settle the question; what they find is what the body alone gives."""
+    from urdftool.description.load import load
+    from urdftool.lint.rules import inertials
+    from urdftool.physics import solids
+
+    (tmp_path / "r.urdf").write_text(BODY.format(com=com, i=i))
+    robot = load(tmp_path / "r.urdf")
+    [(base, properties)] = inertials._valid(robot)
+    asked = _asked_rigid_bounds(monkeypatch)
+    near = inertials._far_outside_box(robot, base, properties) is None
+    within = not list(inertials.inertia_beyond_geometry(robot))
+    assert (asked == []) == settled
+    assert near and (within or i == 0.5)
+    monkeypatch.setattr(solids, "held_box", lambda robot, link: None)  # the body alone
+    again = load(tmp_path / "r.urdf")
+    [(link, other)] = inertials._valid(again)
+    assert (inertials._far_outside_box(again, link, other) is None) == near
+    assert (not list(inertials.inertia_beyond_geometry(again))) == within
+
+
+@pytest.mark.parametrize("links", [4, 8, 16])
+def test_u307_and_u316_find_with_the_own_box_first_what_the_body_alone_finds(
+        tmp_path, monkeypatch, links):
+    """Over random small rigid bodies and centres of mass near, inside and far outside each
+    member's box, with traces around the bound: _far_outside_box and U316 give the same
+    numbers with the own box asked first as with the body's box alone."""
+    import random
+    import re
+
+    from conftest import rigid_body_robot
+    from urdftool.description.load import load
+    from urdftool.lint.rules import inertials
+    from urdftool.physics import solids
+
+    rng = random.Random(links)
+    text = rigid_body_robot(links)
+    for i in range(links + 1):  # an inertial on every link, its centre of mass near its
+        # shape's centre, or outside it, or far away
+        centre = re.search(f'<link name="l{i}"><visual><origin xyz="([^"]*)"', text).group(1)
+        com = " ".join(f"{float(c) + rng.choice([0.0, 0.0, 0.01, 0.3, 20.0]) * rng.uniform(-1, 1):.4f}"
+                       for c in centre.split())
+        inertia = f"{rng.choice([1e-5, 1e-3, 0.02, 0.5]):g}"
+        text = text.replace(f'<link name="l{i}">', f'<link name="l{i}"><inertial><origin '
+                            f'xyz="{com}"/><mass value="{rng.uniform(0.1, 3):.3f}"/><inertia '
+                            f'ixx="{inertia}" ixy="0" ixz="0" iyy="{inertia}" iyz="0" '
+                            f'izz="{inertia}"/></inertial>', 1)
+    (tmp_path / "r.urdf").write_text(text)
+
+    def found():
+        robot = load(tmp_path / "r.urdf")
+        far = [inertials._far_outside_box(robot, link, properties)
+               for link, properties in inertials._valid(robot)]
+        return [None if f is None else (f[0], f[1].bounds) for f in far], \
+            [message for _, message, *_ in inertials.inertia_beyond_geometry(robot)]
+
+    asked = _asked_rigid_bounds(monkeypatch)
+    first = found()
+    assert 0 < len(set(asked)) < links + 1, (asked, first)  # some settled by their own box
+    assert any(f is not None for f in first[0]) and any(f is None for f in first[0])
+    monkeypatch.setattr(solids, "held_box", lambda robot, link: None)
+    assert found() == first

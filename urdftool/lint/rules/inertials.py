@@ -510,19 +510,40 @@ def _far_outside_box(robot, link, properties, decided: set | None = None):
         decided = _plain_decided(robot)[0]
     if not properties.mass > 0 or link in decided:
         return None
+    # the link's own box first: the body's holds it, so a centre of mass near the own box is
+    # near the body's (no farther out, the margin no smaller), found without gathering it
+    held = solids.held_box(robot, link)
+    if held is not None and _far_beyond(held, properties.com) is None:
+        return None
     rigid = solids.rigid_bounds(robot, link)
     if rigid.bounds is None or not rigid.complete:
         return None
-    low, high = rigid.bounds
-    (lx, ly, lz), (hx, hy, hz), (cx, cy, cz) = low, high, properties.com
+    distance = _far_beyond(rigid.bounds, properties.com)
+    return None if distance is None else (distance, rigid)
+
+
+def _far_beyond(bounds, com) -> float | None:
+    """How far [m] ``com`` lies outside the box ``bounds`` when farther than U307 allows (its
+    largest side, at least :data:`COM_MARGIN_MIN`), else None. Each step is monotonic (a
+    larger box: no larger distance, no smaller margin), to the bit."""
+    (lx, ly, lz), (hx, hy, hz), (cx, cy, cz) = *bounds, com
     # per axis, written out (10,000 links): the same maxima and the same sum
     ox, oy, oz = max(lx - cx, cx - hx, 0.0), max(ly - cy, cy - hy, 0.0), \
         max(lz - cz, cz - hz, 0.0)
     distance = math.sqrt(sum((ox * ox, oy * oy, oz * oz)))
     extent = max(hx - lx, hy - ly, hz - lz)
     if distance > max(COM_MARGIN_FRACTION * extent, COM_MARGIN_MIN):
-        return distance, rigid
+        return distance
     return None
+
+
+def _within_half(trace: float, mass: float, bounds) -> bool:
+    """Whether ``trace`` [kg m^2] is within U316's bound for ``mass`` [kg] > 0 whatever the
+    farthest point of a body in the box ``bounds`` is (it is at least half the box's largest
+    side away); monotonic in the box, to the bit: a larger box is within when this one is."""
+    (lx, ly, lz), (hx, hy, hz) = bounds
+    half = max(hx - lx, hy - ly, hz - lz) / 2  # no point is this close to all of the body
+    return trace <= FAR_BEYOND * 2 * mass * half * half
 
 
 def _plain_decided(robot) -> tuple[set, set, set]:
@@ -1466,12 +1487,11 @@ def inertia_beyond_geometry(robot):
         if link in within:
             continue  # within the bound, found with the others at once
         trace = mat3.trace(properties.inertia)
+        held = solids.held_box(robot, link)  # the body's box holds it: no shorter a side
+        if held is not None and _within_half(trace, properties.mass, held):
+            continue  # within the bound of the body's box too, found without gathering it
         rigid = solids.rigid_bounds(robot, link)
-        if rigid.bounds is None:
-            continue
-        (lx, ly, lz), (hx, hy, hz) = rigid.bounds
-        half = max(hx - lx, hy - ly, hz - lz) / 2  # no point is this close to all of the body
-        if trace <= FAR_BEYOND * 2 * properties.mass * half * half:
+        if rigid.bounds is None or _within_half(trace, properties.mass, rigid.bounds):
             continue  # within the bound whatever the farthest point is (d >= half)
         if _name(link) in told or _impossible(robot, link, properties):
             continue
