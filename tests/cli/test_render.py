@@ -67,6 +67,22 @@ def test_render_a_robot_yourdfpy_cannot_read_exits_1_located(tmp_path, run_cli):
     assert result.exit_code == 1 and "bad.urdf" in result.output and "yourdfpy" in result.output
 
 
+def test_render_refuses_a_mimic_cycle_at_its_joint(tmp_path, run_cli):
+    """As fk does (it drew the cycle at 0, exit 0)."""
+    box = '<visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+    path = tmp_path / "cycle.urdf"
+    path.write_text(
+        f'<robot name="r"><link name="base"/><link name="a">{box}</link>\n'
+        f'<joint name="ja" type="continuous"><parent link="base"/><child link="a"/>'
+        f'<mimic joint="jb"/></joint>\n<link name="b">{box}</link>\n'
+        f'<joint name="jb" type="continuous"><parent link="base"/><child link="b"/>'
+        f'<mimic joint="ja"/></joint></robot>')
+    result = run_cli("render", path, "-o", tmp_path / "x.png")
+    assert result.exit_code == 1, result.output
+    assert f"{path}:2: error: joint 'ja' has no value (a mimic cycle?)" in result.output
+    assert not (tmp_path / "x.png").exists()
+
+
 def test_collisions_render_paints_colliding_links_red(tmp_path, run_cli):
     crossed, apart = tmp_path / "crossed.png", tmp_path / "apart.png"
     result = run_cli("collisions", HUMANOID, "--q", "l_hip_roll=-0.5", "--q", "r_hip_roll=0.5",

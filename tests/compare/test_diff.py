@@ -160,6 +160,22 @@ def test_an_rpy_is_compared_as_a_rotation(tmp_path):
     assert change.delta == pytest.approx(0.01)
 
 
+def test_an_inertia_is_compared_as_the_tensor_in_the_link_frame(tmp_path):
+    # the upper arm's principal moments (0.02, 0.02, 0.001) along z, written turned a quarter
+    # about y: the same body as the tensor written unturned
+    turned = ARM.replace(
+        '<mass value="1.0"/><origin xyz="0 0 0.2"/>\n      <inertia ixx="0.02" ixy="0" ixz="0" '
+        'iyy="0.02" iyz="0" izz="0.001"/>',
+        f'<mass value="1.0"/><origin xyz="0 0 0.2" rpy="0 {math.pi / 2!r} 0"/>\n      '
+        '<inertia ixx="0.001" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/>')
+    assert turned != ARM
+    assert compare(tmp_path / "a", turned).changes == []
+    # turned the other way round without swapping the moments: a different body, field by field
+    wrong = turned.replace('ixx="0.001" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"',
+                           'ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.001"')
+    assert {c.field for c in compare(tmp_path / "b", wrong).changes} == {"inertial.origin.rpy"}
+
+
 def test_the_total_mass_is_summed_exactly(tmp_path):
     # ten links of 0.1 kg weigh 1 kg (0.9999999999999999 summed one by one)
     links = "".join(f'<link name="l{i}"><inertial><mass value="0.1"/><inertia ixx="0.001" '

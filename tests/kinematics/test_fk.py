@@ -115,6 +115,23 @@ def test_floating_root_pose_and_base_option(tiny):
     assert relative.base == "a" and result.base == "world"
 
 
+def test_floating_keeps_a_robots_own_free_base(tiny, run_cli, tmp_path):
+    """TINY hangs from a massless 'world' by its own floating joint 'free': --floating adds no
+    second free base above it (it added 'root_joint', which moved 'world' too)."""
+    free = KinematicModel(tiny.robot, floating=True)
+    assert [v.name for v in free.variables] == [v.name for v in tiny.variables]
+    assert not free.floating and free.root_frame == "world"
+    path = tmp_path / "tiny.urdf"
+    path.write_bytes(TINY)
+    result = run_cli("fk", path, "--floating", "--q", "free.z=2", "--frame", "world",
+                     "--frame", "a", "-f", "json")
+    assert result.exit_code == 0, result.output
+    frames = {f["frame"]: f["position"] for f in json.loads(result.stdout)["frames"]}
+    assert frames == {"world": [0.0, 0.0, 0.0], "a": [0.0, 0.0, 3.0]}
+    refused = run_cli("fk", path, "--floating", "--q", "root_joint.z=2")
+    assert refused.exit_code == 2 and "unknown joint 'root_joint.z'" in refused.output
+
+
 def test_humanoid_leg_pose_by_hand(humanoid):
     configurations = config.from_words(humanoid.variables, {"l_knee": "90"}, degrees=True)
     pose = forward_kinematics(humanoid, configurations, ["l_foot_link"], "body_link").matrices[0, 0]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -93,6 +95,28 @@ def test_an_axis_with_no_direction_is_a_scene_error_at_its_joint(tmp_path):
     with pytest.raises(SceneError, match="'shoulder': <axis xyz> '0 0 0' has no direction") as error:
         posed(robot)
     assert error.value.element is robot.joints["shoulder"]
+
+
+@pytest.mark.parametrize("mimics, message, at", [
+    (("jb", "ja"), "joint 'ja' has no value (a mimic cycle?)", "joint"),
+    (("jaa", None), "joint 'ja' mimics unknown joint 'jaa'", "mimic"),  # (where fk says it)
+])
+def test_a_moving_joint_without_a_value_is_a_scene_error_at_the_joint(tmp_path, mimics,
+                                                                      message, at):
+    """A mimic cycle, or a mimic of a joint that does not exist, leaves a moving joint without
+    a value: fk refuses it at the joint; the scene was drawn with yourdfpy's 0 (render exit 0)."""
+    joints = "".join(
+        f'<joint name="{name}" type="revolute"><parent link="base"/><child link="{child}"/>'
+        f'<limit lower="-1" upper="1" effort="1" velocity="1"/>'
+        + (f'<mimic joint="{leader}"/>' if leader else "") + "</joint>"
+        for name, child, leader in (("ja", "a", mimics[0]), ("jb", "b", mimics[1])))
+    box = '<visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+    robot = load_text(tmp_path, f'<robot name="r"><link name="base"/><link name="a">{box}'
+                                f'</link><link name="b">{box}</link>{joints}</robot>')
+    with pytest.raises(SceneError, match=re.escape(message)) as error:
+        scene_model(robot)
+    joint = robot.joints["ja"]
+    assert error.value.element is (joint if at == "joint" else joint.find("mimic"))
 
 
 def test_triangles_are_posed_coloured_and_owned(tmp_path):

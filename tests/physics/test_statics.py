@@ -142,6 +142,21 @@ def test_standing_differs_from_the_root_fixed(tmp_path):
     assert abs(standing["ankle"]) > 5 * abs(fixed["ankle"])
 
 
+def test_a_leg_with_its_own_free_base_stands_as_the_leg_does(tmp_path):
+    """The leg hung from a massless 'world' by a floating joint of its own (a simulator's free
+    body): standing frees that joint, as it frees the leg's root (it was refused, 'of 6 degrees
+    of freedom'); the same joints, torques and wrenches."""
+    own = LEG.replace("</robot>", '<link name="world"/><joint name="free" type="floating">'
+                                  '<parent link="world"/><child link="torso"/></joint></robot>')
+    angles = {"hip": -0.4, "knee": 0.8, "ankle": -0.4}
+    stances = [stand(build_standing(_robot(tmp_path, text, name), ["foot"]), angles)
+               for text, name in ((LEG, "leg.urdf"), (own, "own.urdf"))]
+    assert stances[1].joints == stances[0].joints == ["hip", "knee", "ankle"]
+    assert np.allclose(stances[1].torques, stances[0].torques, atol=1e-12)
+    assert np.allclose(stances[1].fixed_base, stances[0].fixed_base, atol=1e-12)
+    assert np.allclose(stances[1].wrenches["foot"], stances[0].wrenches["foot"], atol=1e-9)
+
+
 def test_humanoid_crouched_on_its_left_foot():
     standing = build_standing(load(HUMANOID), ["l_foot_link"])
     crouch = {"l_hip_pitch": math.radians(-30), "l_knee": math.radians(60),

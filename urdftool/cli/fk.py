@@ -32,7 +32,10 @@ def fk(
     base: str = typer.Option(None, "--base", metavar="LINK", help="Poses relative to this link."),
     matrix: bool = typer.Option(False, "--matrix", help="Also give each pose as a 4x4 matrix."),
     floating: bool = typer.Option(False, "--floating",
-                                  help="Add a free-flyer root joint 'root_joint' (.x .y .z .roll .pitch .yaw)."),
+                                  help="Add a free-flyer root joint 'root_joint' (.x .y .z "
+                                       ".roll .pitch .yaw); a robot hung from a massless root "
+                                       "by a floating joint of its own has that one as its "
+                                       "free base."),
     dh: str = typer.Option(None, "--dh", metavar="TABLE", help="Compute the chain from this D-H table."),
     verify: bool = typer.Option(False, "--verify",
                                 help="With --dh: compare D-H and URDF FK on random configurations."),

@@ -223,6 +223,36 @@ def turn(key: str, old, new) -> float | None:
     return math.atan2(length((h - f, c - g, d - b)) / 2.0, (a + e + i - 1.0) / 2.0)
 
 
+INERTIA_FIELDS = ("inertial.origin.rpy", "inertial.ixx", "inertial.ixy", "inertial.ixz",
+                  "inertial.iyy", "inertial.iyz", "inertial.izz")
+
+
+def _tensor(fields: dict):
+    """A link's inertia tensor [kg m^2] in the link frame (its ``<inertial>``'s turned by the
+    inertial's rpy), or None when a number of it is missing or unread."""
+    from urdftool.physics import mat3
+
+    values = [fields.get(key) for key in INERTIA_FIELDS]
+    rpy, (ixx, ixy, ixz, iyy, iyz, izz) = values[0], values[1:]
+    if not _readable(rpy) or not all(isinstance(v, float) and math.isfinite(v)
+                                     for v in values[1:]):
+        return None
+    return mat3.rotate(((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz)),
+                       mat3.rpy_matrix(rpy))
+
+
+def _same_inertia(old: dict, new: dict, tolerance: float) -> bool:
+    """Whether two links' inertia is the same tensor in the link frame, however each writes it
+    (the principal moments along turned axes, or the full tensor unturned: Pinocchio, Gazebo
+    and MuJoCo see one body), entries within ``tolerance`` (and the rounding of the turn)."""
+    tensors = _tensor(old), _tensor(new)
+    if tensors[0] is None or tensors[1] is None:
+        return False
+    rounding = 1e-12 * max(abs(x) for tensor in tensors for row in tensor for x in row)
+    return all(abs(a - b) <= tolerance + rounding
+               for rows in zip(*tensors) for a, b in zip(*rows))
+
+
 def compare_fields(element: str, name: str, old: dict, new: dict, tolerance: float,
                    old_name: str | None = None) -> list[Change]:
     changes = []
@@ -376,9 +406,11 @@ def structure(old, new, tolerance: float = 1e-9) -> tuple[list[Change], Renames]
                 continue
             if target != name:
                 changes.append(Change("renamed", element, target, old_name=name))
-            found_changes = compare_fields(element, target, read(item, "old"),
-                                           read(new_items[target], "new"), tolerance,
+            fields = read(item, "old"), read(new_items[target], "new")
+            found_changes = compare_fields(element, target, *fields, tolerance,
                                            name if target != name else None)
+            if element == "link" and _same_inertia(*fields, tolerance):
+                found_changes = [c for c in found_changes if c.field not in INERTIA_FIELDS]
             if element == "joint":  # limits are angles or lengths by the joint's type
                 unit = "m" if new_items[target].get("type") == "prismatic" else "rad"
                 for change in found_changes:

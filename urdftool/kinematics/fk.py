@@ -94,6 +94,12 @@ class KinematicModel:
     """A robot's kinematics: its variables, its links, and poses for many configurations."""
 
     def __init__(self, robot, floating: bool = False):
+        """``floating``: a free-flyer root joint ``root_joint`` above the root link, unless the
+        robot has its own free base (:func:`urdftool.kinematics.tree.own_free_base`), whose
+        coordinates are the free base's then: no second one is added."""
+        from urdftool.kinematics.tree import own_free_base
+
+        floating = floating and own_free_base(robot) is None
         self.robot, self.floating = robot, floating
         self.variables: list[Variable] = variables_of(robot, FLOATING_ROOT if floating else None)
         self.mimics = mimics_of(robot)

@@ -317,7 +317,9 @@ def _follow_variables(robot, root) -> None:
     """Point each ``<mimic>`` of ``root`` (the expanded URDF's tree given to yourdfpy) at the
     variable it follows in the end, with the chain's multiplier and offset: yourdfpy follows one
     step only, and posed a mimic of a mimic (28 virtual joints of the qb SoftHand in the sweep)
-    at its offset whatever its source's value ("not actuated - will assume 0")."""
+    at its offset whatever its source's value ("not actuated - will assume 0"). SceneError at
+    the joint for a moving one that has no value (a mimic cycle, a mimic of an unknown joint),
+    as fk refuses it: yourdfpy drew a cycle at 0 and followed an unknown joint as 0, exit 0."""
     from urdftool.errors import ConfigError, MimicError
     from urdftool.kinematics.configuration import mimic_source, variables_of
 
@@ -330,8 +332,11 @@ def _follow_variables(robot, root) -> None:
         try:
             variable, multiplier, offset = mimic_source(robot, joint.get("name"), names,
                                                         known=known)
-        except (ConfigError, MimicError):  # a cycle, an unknown joint: yourdfpy's own reading
-            continue
+        except (ConfigError, MimicError) as error:  # a cycle, an unknown joint
+            if joint.get("type") == "fixed":  # (its value moves nothing)
+                continue
+            raise SceneError(str(error), error.element if isinstance(error, MimicError)
+                             else robot.joints.get(joint.get("name"))) from None
         mimic.set("joint", variable)
         mimic.set("multiplier", repr(multiplier))
         mimic.set("offset", repr(offset))
