@@ -469,3 +469,35 @@ def test_a_question_of_the_same_shapes_is_answered_once_per_run(tmp_path):
     assert second.outside(far, beyond=_margin) == expected and second._table is None
     assert second.outside((0.0, 0.0, 0.5), beyond=_margin) > expected
     assert moved.outside(far, beyond=_margin) != expected and moved._table is not None
+
+
+def test_a_point_inside_a_links_own_geometry_is_inside_its_bodys_hull(tmp_path):
+    """inside_own says a point is inside only where the hull of the link's rigid body (its
+    own pieces and those fixed to it) holds it: outside 0 for a reach of primitives, to
+    rounding with meshes; points outside the link's own geometry, beyond 1e6 m or not a
+    number are not claimed."""
+    from benchmarks.generate import _sphere_stl
+    from urdftool.physics.support import inside_own
+
+    (tmp_path / "ball.stl").write_bytes(_sphere_stl(0.05, 12, 16, open_top=False))
+    for own in (SHAPES["box"], SHAPES["cylinder"], '<mesh filename="ball.stl"/>'):
+        robot = load_text(tmp_path, f"""<robot name="r">
+          <link name="a"><collision><origin xyz="{' '.join(map(str, XYZ))}"
+            rpy="{' '.join(map(str, RPY))}"/><geometry>{own}</geometry></collision></link>
+          <link name="b"><visual><geometry>{SHAPES["sphere"]}</geometry></visual></link>
+          <joint name="ab" type="fixed"><parent link="a"/><child link="b"/>
+            <origin xyz="0.4 0.1 0"/></joint></robot>""")
+        link = robot.links["a"]
+        body = link_reach(robot, link, rigid=True)
+        assert body.links == ["a", "b"]
+        rng = np.random.default_rng(1)
+        points = np.asarray(XYZ) + rng.uniform(-0.08, 0.08, size=(300, 3))
+        inside = [bool(inside_own(robot, link, tuple(p))) for p in points.tolist()]
+        assert 20 < sum(inside) < 280, own
+        for p, held in zip(points.tolist(), inside):
+            if held:
+                assert body.outside(tuple(p)) <= (0.0 if "mesh" not in own else 1e-12)
+        near_b = (0.4, 0.1, 0.0)  # inside b's sphere, outside a's own geometry
+        assert not inside_own(robot, link, near_b) and body.outside(near_b) == 0.0
+        assert not inside_own(robot, link, (1e6, 0.0, 0.0))
+        assert not inside_own(robot, link, (math.nan, 0.0, 0.0))

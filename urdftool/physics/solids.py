@@ -1098,6 +1098,12 @@ def rigid_group(robot, name: str) -> list[str]:
     return order
 
 
+def fixed_to_others(robot, name: str) -> bool:
+    """Whether some link is joined to link ``name`` by a fixed joint: its rigid body is more
+    than itself."""
+    return name in _fixed_neighbours(robot)
+
+
 def rigid_root(robot, name: str) -> str:
     """The root of link ``name``'s rigid body (:func:`_bodies`: the same link for every member),
     ``name`` itself when no link is fixed to it: a key for what is asked once per body."""

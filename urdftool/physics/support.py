@@ -761,6 +761,28 @@ def link_reach(robot, link, tags=TAGS, rigid: bool = False) -> Reach | _Body:
                           lambda: _build(robot, link, tags, False))
 
 
+def inside_own(robot, link, p) -> bool:
+    """Whether ``p`` [m] (the link frame) is certainly inside the link's own visual or
+    collision geometry (:func:`link_reach` of the link alone): inside one of its primitives
+    (:meth:`Piece.holds`) or the star of one of its meshes (:func:`_mesh_star`, in the mesh's
+    own frame), every coordinate of ``p`` within 1e6 m (rounding far below a micrometre).
+    Then ``p`` is inside the hull of every reach holding those pieces, its rigid body's too,
+    whose :meth:`Reach.outside` is 0 to that rounding: asked of a member of a body before the
+    body's reach is gathered in the member's frame (each member gathers every member's
+    pieces: a body of n links places n^2)."""
+    if not all(abs(v) < _NEAR_RANGE for v in p):  # (False for a NaN too)
+        return False
+    pieces = link_reach(robot, link).pieces
+    if any(piece.holds(p) for piece in pieces if piece.kind != "mesh"):
+        return True
+    meshes = [piece for piece in pieces if piece.kind == "mesh"]
+    if not meshes:
+        return False
+    import numpy as np
+
+    return _in_own_star(meshes, np.asarray(p, dtype=float))
+
+
 def _build(robot, link, tags, rigid) -> Reach:
     name = link.get("name")
     frames = _rigid_frames(robot, name) if rigid and name in robot.links else \
@@ -843,4 +865,4 @@ def frame_of(robot, name: str, base: str) -> Frame | None:
     return xyz, rotation
 
 
-__all__ = ["Piece", "Reach", "link_reach", "frame_of", "rigid_group", "DIRECTIONS"]
+__all__ = ["Piece", "Reach", "link_reach", "inside_own", "frame_of", "rigid_group", "DIRECTIONS"]

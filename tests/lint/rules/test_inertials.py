@@ -839,36 +839,46 @@ def test_u307_and_u316_ask_the_whole_body_only_when_the_own_box_does_not_settle(
     assert (not list(inertials.inertia_beyond_geometry(again))) == within
 
 
-@pytest.mark.parametrize("links", [4, 8, 16])
-def test_u307_and_u316_find_with_the_own_box_first_what_the_body_alone_finds(
-        tmp_path, monkeypatch, links):
-    """Over random small rigid bodies and centres of mass near, inside and far outside each
-    member's box, with traces around the bound: _far_outside_box and U316 give the same
-    numbers with the own box asked first as with the body's box alone."""
+def _random_body(tmp_path, links: int):
+    """:func:`conftest.rigid_body_robot` of ``links`` links with an inertial on each, its
+    centre of mass at its shape's centre (the first link's), near it, outside it or far away,
+    its tensor small or large, written to ``r.urdf``."""
     import random
     import re
 
     from conftest import rigid_body_robot
-    from urdftool.description.load import load
-    from urdftool.lint.rules import inertials
-    from urdftool.physics import solids
 
     rng = random.Random(links)
     text = rigid_body_robot(links)
-    for i in range(links + 1):  # an inertial on every link, its centre of mass near its
-        # shape's centre, or outside it, or far away
+    for i in range(links + 1):
         centre = re.search(f'<link name="l{i}"><visual><origin xyz="([^"]*)"', text).group(1)
-        com = " ".join(f"{float(c) + rng.choice([0.0, 0.0, 0.01, 0.3, 20.0]) * rng.uniform(-1, 1):.4f}"
-                       for c in centre.split())
+        offsets = [rng.choice([0.0, 0.0, 0.01, 0.1, 0.3, 1.0, 20.0]) * rng.uniform(-1, 1)
+                   for _ in range(3)]  # (the first link's at its shape's centre)
+        com = " ".join(f"{float(c) + (d if i else 0.0):.4f}"
+                       for c, d in zip(centre.split(), offsets))
         inertia = f"{rng.choice([1e-5, 1e-3, 0.02, 0.5]):g}"
         text = text.replace(f'<link name="l{i}">', f'<link name="l{i}"><inertial><origin '
                             f'xyz="{com}"/><mass value="{rng.uniform(0.1, 3):.3f}"/><inertia '
                             f'ixx="{inertia}" ixy="0" ixz="0" iyy="{inertia}" iyz="0" '
                             f'izz="{inertia}"/></inertial>', 1)
     (tmp_path / "r.urdf").write_text(text)
+    return tmp_path / "r.urdf"
+
+
+@pytest.mark.parametrize("links", [4, 8, 16])
+def test_u307_and_u316_find_with_the_own_box_first_what_the_body_alone_finds(
+        tmp_path, monkeypatch, links):
+    """Over random small rigid bodies and centres of mass near, inside and far outside each
+    member's box, with traces around the bound: _far_outside_box and U316 give the same
+    numbers with the own box asked first as with the body's box alone."""
+    from urdftool.description.load import load
+    from urdftool.lint.rules import inertials
+    from urdftool.physics import solids
+
+    path = _random_body(tmp_path, links)
 
     def found():
-        robot = load(tmp_path / "r.urdf")
+        robot = load(path)
         far = [inertials._far_outside_box(robot, link, properties)
                for link, properties in inertials._valid(robot)]
         return [None if f is None else (f[0], f[1].bounds) for f in far], \
@@ -880,3 +890,26 @@ def test_u307_and_u316_find_with_the_own_box_first_what_the_body_alone_finds(
     assert any(f is not None for f in first[0]) and any(f is None for f in first[0])
     monkeypatch.setattr(solids, "held_box", lambda robot, link: None)
     assert found() == first
+
+
+@pytest.mark.parametrize("links", [4, 8, 16])
+def test_u312_gathers_a_members_body_only_when_its_own_geometry_does_not_hold_the_com(
+        tmp_path, monkeypatch, links):
+    """U312 asks first whether a member's centre of mass is inside its own geometry
+    (support.inside_own: then inside its body's hull), and gathers the body's reach in the
+    member's frame only when not: over random small bodies, some members' bodies are not
+    gathered, and the rule finds what it finds with every body gathered."""
+    from urdftool.description.load import load
+    from urdftool.lint.rules import inertials
+    from urdftool.physics import support
+
+    path = _random_body(tmp_path, links)
+    gathered, build = [], support._build
+    monkeypatch.setattr(support, "_build", lambda robot, link, tags, rigid: (
+        gathered.append(link.get("name")) if rigid else None) or build(robot, link, tags, rigid))
+    first = [message for _, message, *_ in inertials.com_outside_hull(load(path))]
+    assert first and 0 < len(gathered) < links, (gathered, first)
+    monkeypatch.setattr(inertials, "inside_own", lambda robot, link, p: False)
+    gathered.clear()
+    assert [message for _, message, *_ in inertials.com_outside_hull(load(path))] == first
+    assert len(gathered) == links  # (every member of the body with mass: all but the last)

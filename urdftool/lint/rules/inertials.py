@@ -34,7 +34,7 @@ from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared_of, moments_of, \
     relative_difference, triangle_violation
 from urdftool.physics import solids
 from urdftool.physics.frames import parent_joints
-from urdftool.physics.support import link_reach
+from urdftool.physics.support import inside_own, link_reach
 from urdftool.lint.rules.joints import origin_xyz
 
 NEGATIVE_TOLERANCE = 1e-9
@@ -1144,6 +1144,9 @@ def com_outside_hull(robot):
             continue
         if link in inside:
             continue  # inside one of its primitives: outside by 0
+        if solids.fixed_to_others(robot, link.get("name")) and \
+                inside_own(robot, link, properties.com):
+            continue  # inside its own geometry, so inside its body's hull: the body not gathered
         reach = link_reach(robot, link, ("visual", "collision"), rigid=True)
         if not reach.pieces or not reach.complete or _contact_spheres_only(robot, link, reach):
             continue
