@@ -29,11 +29,11 @@ from urdftool.description.collada import parser
 from urdftool.description.xml import entity_uses
 from urdftool.description.files import TooLarge, inside, read_regular
 from urdftool.description.inputs import MeshLimits
-from urdftool.description.mesh_arrays import KEY_RANGE
 from urdftool.description.meshes.counting import triangle_count
 from urdftool.description.meshes.run_cache import once, stamp_of
 from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem, described
+from urdftool.numbers import MAX_COORDINATE
 
 NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
 # mesh metadata: which of its triangles use vertices that are not finite numbers (trimesh
@@ -141,10 +141,9 @@ def refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:
                                        f"limit of {limits.max_triangles}; decimate it")
 
 
-# [the mesh's own unit] beyond, a mesh is not measured: its vertices merge at 1e-8 as 64-bit
-# integers (mesh_arrays.KEY_RANGE, 4.6e10); its volume and inertia take the third and fifth
-# powers of what fits
-MAX_COORDINATE = KEY_RANGE
+# [the mesh's own unit] beyond numbers.MAX_COORDINATE, a mesh is not measured: its vertices
+# merge at 1e-8 as 64-bit integers (mesh_arrays.KEY_RANGE, 4.6e10); its volume and inertia take
+# the third and fifth powers of what fits
 
 
 def refuse_too_far(uri: str, vertices) -> None:
