@@ -28,7 +28,8 @@ from urdftool.kinematics import transforms
 from urdftool.kinematics.tree import children_by_link, root_link
 from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
                             Variable, mimic_source, mimics_of, variables_of)
-from urdftool.numbers import length as vector_length, power, unit as vector_unit
+from urdftool.numbers import (MAX_COORDINATE, length as vector_length, power,
+                              unit as vector_unit)
 
 FLOATING_ROOT = "root_joint"
 # [links] up to which Pinocchio's model is built with each KinematicModel, for urdfdom's verdict
@@ -324,17 +325,36 @@ class _Scratch:
 NQ = {"revolute": 1, "prismatic": 1, "continuous": 2, "floating": 7, "planar": 4}  # Pinocchio's
 
 
+def placed_within(robot) -> None:
+    """FKError for the first joint whose ``<origin>`` is no pose (:func:`_placement`): the one
+    check of joint origins, which :class:`KinematicModel` makes as it builds (fk, ik,
+    workspace, collisions, diff) and the models built otherwise ask (dynamics: Pinocchio from
+    the text; render: yourdfpy); once per robot."""
+    def check() -> bool:
+        for element in robot.joints.values():
+            _placement(element)
+        return True
+
+    robot.memo(placed_within, check)
+
+
 def _placement(element) -> np.ndarray:
     """The 4x4 transform of a joint's ``<origin>``, its rotation as Pinocchio has it (urdfdom's
     quaternion of the roll-pitch-yaw, then Eigen's matrix of the quaternion: the same numbers
     to the bit, so that an angle at +-pi reads as Pinocchio's did); FKError when a number in it
-    is malformed (urdfdom refuses it: there is no pose to give)."""
+    is malformed (urdfdom refuses it: there is no pose to give), or places the link past
+    :data:`urdftool.numbers.MAX_COORDINATE` (every pose below it rounded or overflowed)."""
     from urdftool.description.values import origin
 
     found = origin(element)
     problem = found.problem or (None if all(map(math.isfinite, (*found.xyz, *found.rpy))) else
                                 f"holds a number that is not finite (xyz {_numbers(found.xyz)}, "
                                 f"rpy {_numbers(found.rpy)}): no pose has it")
+    if not problem and not max(map(abs, found.xyz)) < MAX_COORDINATE:
+        from urdftool.numbers import number
+
+        problem = (f"xyz {_numbers(found.xyz)} is past the {number(MAX_COORDINATE)} m urdftool "
+                   "places a link within")
     if problem:  # inf: math.sin raised ValueError; nan: every pose below it nan, silently
         raise FKError(f"joint '{element.get('name')}': <origin> {problem}",
                       found.element if found.element is not None else element)

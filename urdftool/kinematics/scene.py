@@ -216,6 +216,13 @@ def _yourdfpy(robot, collision: bool):
     logging.getLogger("yourdfpy").setLevel(logging.CRITICAL)  # its warnings are rule findings
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              remove_comments=True, remove_blank_text=True)
+    from urdftool.errors import FKError
+    from urdftool.kinematics.fk import placed_within
+
+    try:
+        placed_within(robot)
+    except FKError as error:
+        raise SceneError(str(error), error.element) from None
     root = etree.fromstring(robot.urdf.encode("utf-8"), parser)
     _follow_variables(robot, root)
     try:

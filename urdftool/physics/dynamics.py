@@ -83,10 +83,15 @@ def build(robot, floating: bool = False) -> Model:
     --floating``), whose six velocity variables come first."""
     import pinocchio as pin
 
+    from urdftool.errors import FKError
     from urdftool.kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
-    from urdftool.kinematics.fk import FLOATING_ROOT
+    from urdftool.kinematics.fk import FLOATING_ROOT, placed_within
     from urdftool.kinematics.native import build_model
 
+    try:  # (an origin at 1e200: torques of NaN)
+        placed_within(robot)
+    except FKError as error:
+        raise DynamicsError(str(error), error.element) from None
     root = FLOATING_ROOT if floating else None
     model = build_model(robot, *((pin.JointModelFreeFlyer(), root) if floating else ()))
     joints = [f"{root}.{c}" for c in FLOATING_COORDINATES] if floating else []
