@@ -490,6 +490,16 @@ def test_a_part_past_the_farthest_coordinate_is_left_out_with_a_note(tmp_path, p
         assert all(np.isfinite(c.distance) for c in report.closest), report.closest
 
 
+def test_a_pair_no_sample_bounded_keeps_its_distance_unknown():
+    """A tally whose pair has no bounding sample (index -1: its spheres' gaps were never
+    finite, as with a part at 1e200 before the bound) drew block -1 as the seed [0, -1]:
+    numpy refused it and the matrix said "--seed must be an integer, 0 or more, not 0". No
+    sample, nothing drawn or posed: the distance stays unknown."""
+    from urdftool.collision.pairs import Tally
+
+    assert matrix._distances(None, None, Tally.empty(2), 0) == [np.inf, np.inf]
+
+
 def test_cli_pose_exit_codes_and_json(run_cli, tmp_path):
     path = write(tmp_path, two_boxes(0, 1))
     colliding = run_cli("collisions", path, "--q", "slider=0.05")
