@@ -358,11 +358,30 @@ def _placement(element) -> np.ndarray:
     if problem:  # inf: math.sin raised ValueError; nan: every pose below it nan, silently
         raise FKError(f"joint '{element.get('name')}': <origin> {problem}",
                       found.element if found.element is not None else element)
+    mimic = element.find("mimic")
+    if mimic is not None:  # multiplier 1e200: its link at 1e200 whatever the joint it follows
+        _mimic_within(element, mimic)
     matrix = np.eye(4)
     matrix[:3, 3] = found.xyz
     if found.rpy != (0.0, 0.0, 0.0):  # the identity to the bit, without the products
         matrix[:3, :3] = _rotation(*found.rpy)
     return matrix
+
+
+def _mimic_within(element, mimic) -> None:
+    """FKError for a ``<mimic>`` whose multiplier or offset is past
+    :data:`~urdftool.numbers.MAX_COORDINATE`: it moves its link past it whatever the joint it
+    follows (values within the bound), a place no pose keeps (a workspace "max reach inf m",
+    dynamics "total tau nan", collisions' distances of inf)."""
+    from urdftool.description.values import parse_numbers
+    from urdftool.numbers import number
+
+    for attribute in ("multiplier", "offset"):
+        values, _ = parse_numbers(mimic.get(attribute), 1)
+        if values and math.isfinite(values[0]) and not abs(values[0]) < MAX_COORDINATE:
+            raise FKError(f"joint '{element.get('name')}': <mimic {attribute}> "
+                          f"{number(values[0])} is past the {number(MAX_COORDINATE)} urdftool "
+                          "places a link (or turns it, in rad) within", mimic)
 
 
 def _numbers(values) -> str:
