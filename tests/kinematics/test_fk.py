@@ -621,6 +621,18 @@ FAR_JOINT = """<robot name="r">
 </robot>"""
 
 
+def _model_builder(build: str):
+    """(the builder of ``build``'s model, the error it refuses a robot with): urdftool's own
+    (fk, ik, workspace, collisions, diff), Pinocchio's of dynamics, yourdfpy's of render."""
+    from urdftool.errors import DynamicsError, FKError, SceneError
+    from urdftool.kinematics.fk import KinematicModel
+    from urdftool.kinematics.scene import posed
+    from urdftool.physics import dynamics
+
+    return {"fk": (KinematicModel, FKError), "dynamics": (dynamics.build, DynamicsError),
+            "render": (posed, SceneError)}[build]
+
+
 @pytest.mark.parametrize("build", ["fk", "dynamics", "render"])
 def test_a_joint_placed_past_the_farthest_coordinate_is_refused_by_every_model(tmp_path, build):
     """A joint at 1e200: workspace said "max reach 0 m", ik "inf m", dynamics torques of NaN,
@@ -629,13 +641,8 @@ def test_a_joint_placed_past_the_farthest_coordinate_is_refused_by_every_model(t
     every model: urdftool's own (fk, ik, workspace, collisions, diff), Pinocchio's of dynamics,
     yourdfpy's of render; just within, each builds."""
     from conftest import load_text
-    from urdftool.errors import DynamicsError, FKError, SceneError
-    from urdftool.kinematics.fk import KinematicModel
-    from urdftool.kinematics.scene import posed
-    from urdftool.physics import dynamics
 
-    make, error = {"fk": (KinematicModel, FKError), "dynamics": (dynamics.build, DynamicsError),
-                   "render": (posed, SceneError)}[build]
+    make, error = _model_builder(build)
     far = load_text(tmp_path, FAR_JOINT.format(x="1e200"))
     with pytest.raises(error, match=r"joint 'j': <origin> xyz '1e\+200 0 0' is past the "
                                     r"4\.612e\+10 m urdftool places a link within") as refused:
@@ -652,13 +659,8 @@ def test_a_mimic_moving_its_link_past_the_farthest_coordinate_is_refused_by_ever
     of the joint it follows: workspace "max reach inf m", dynamics "total tau nan", collisions'
     distances of inf. The one check of joint placements refuses it at its <mimic>."""
     from conftest import load_text
-    from urdftool.errors import DynamicsError, FKError, SceneError
-    from urdftool.kinematics.fk import KinematicModel
-    from urdftool.kinematics.scene import posed
-    from urdftool.physics import dynamics
 
-    make, error = {"fk": (KinematicModel, FKError), "dynamics": (dynamics.build, DynamicsError),
-                   "render": (posed, SceneError)}[build]
+    make, error = _model_builder(build)
     text = FAR_JOINT.format(x="1").replace("</robot>", f"""
   <link name="c"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0"
     iyz="0"/></inertial></link>
