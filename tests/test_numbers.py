@@ -207,3 +207,13 @@ def test_exact_is_every_digit_and_no_signed_zero():
 
     assert [exact(v) for v in (-0.0, 0.0, 0.1 + 0.2, -1e-300, 3)] == \
         ["0.0", "0.0", "0.30000000000000004", "-1e-300", "3.0"]
+
+
+def test_the_farthest_coordinate_is_where_mesh_vertices_stop_merging():
+    """numbers.MAX_COORDINATE bounds every placed part, joint and mesh vertex; meshes merge
+    their vertices in integers up to mesh_arrays.KEY_RANGE: one number."""
+    from urdftool.description.mesh_arrays import KEY_RANGE
+    from urdftool.description.meshes.reading import MAX_COORDINATE as MESHES
+    from urdftool.numbers import MAX_COORDINATE
+
+    assert MAX_COORDINATE == KEY_RANGE == MESHES

@@ -54,8 +54,14 @@ imported; ``-P``/``-I`` (Python's own guard) leave no such entry to take.
 import os
 import sys
 
-if __name__ == "__main__" and not sys.flags.safe_path and sys.path[:1] in ([""], [os.getcwd()]):
-    del sys.path[0]
+if __name__ == "__main__" and not sys.flags.safe_path and sys.path:
+    try:
+        _here = os.getcwd()
+    except OSError:  # the folder was deleted under it: Python put '' there
+        _here = ""
+    if sys.path[0] in ("", _here):
+        del sys.path[0]
+    del _here
 
 from contextlib import contextmanager  # noqa: E402 (after the guard above)
 

@@ -35,6 +35,13 @@ from collections.abc import Iterable
 # answer is inf (a target "inf m" away, a torque of "inf N m").
 SQUARABLE = 1e150
 
+# The farthest coordinate urdftool places or measures geometry at ([m], or a mesh's own unit):
+# a mesh's vertices merge at 1e-8 as 64-bit integers (mesh_arrays.KEY_RANGE, this number), and
+# a joint or a part placed farther (an <origin xyz="1e200 0 0">) left every pose below it
+# rounded to nothing (a reach of 0 m), squared to inf (ik, collisions' distances) or NaN
+# (dynamics, render), and FCL's matrix failed with a message of its own
+MAX_COORDINATE = 2.0 ** 62 / 1e8
+
 
 def power(base, exponent):
     """``base ** exponent`` as IEEE arithmetic: an infinity of the right sign where the result

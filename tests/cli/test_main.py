@@ -48,6 +48,12 @@ def test_python_m_urdftool_imports_nothing_from_the_folder_it_runs_in(tmp_path):
                               text=True, cwd=tmp_path, env=environment, timeout=120)
         assert not marker.exists(), (words, marker.read_text())
         assert done.returncode == 0, (words, done.stderr)
+    gone = tmp_path / "gone"  # a folder deleted under it has no name to compare (getcwd fails)
+    gone.mkdir()
+    done = subprocess.run(["sh", "-c", 'cd "$1" && rmdir "$1" && exec "$2" -m urdftool --version',
+                           "sh", str(gone), sys.executable], capture_output=True, text=True,
+                          env=environment, timeout=120)
+    assert done.returncode == 0 and done.stdout.startswith("urdftool "), done.stderr
 
 
 # ``urdftool check`` through the door, with the result cache

@@ -453,6 +453,53 @@ def test_missing_mesh_and_visual_only_links_are_reported(tmp_path):
     assert "missing.stl" in problem.message and problem.location.line == 11
 
 
+FAR_PARTS = {"box": '<box size="1e300 1 1"/>', "sphere": '<sphere radius="1e200"/>',
+             "cylinder": '<cylinder radius="1" length="1e300"/>',
+             "mesh": '<mesh filename="t.stl" scale="1e30 1e30 1e30"/>',
+             "origin": '<box size="1 1 1"/>'}
+
+
+def far_robot(tmp_path, part: str) -> str:
+    """base and a far part on a slider (its geometry in ``FAR_PARTS``), and a box beyond."""
+    (tmp_path / "t.stl").write_text("solid t\n" + "".join(
+        f"facet normal 0 0 0\nouter loop\nvertex {a}\nvertex {b}\nvertex {c}\nendloop\n"
+        "endfacet\n" for a, b, c in (("0 0 0", "1 0 0", "0 1 0"), ("0 0 0", "0 1 0", "0 0 1"),
+                                     ("0 0 0", "0 0 1", "1 0 0"), ("1 0 0", "0 1 0", "0 0 1")))
+        + "endsolid t\n")
+    xyz = "1e300 0 0" if part == "origin" else "0 0 0"
+    far = (f'<origin xyz="{xyz}"/><geometry>{FAR_PARTS[part]}</geometry>')
+    return two_boxes(0, 1, extra=f"""
+  <link name="far"><visual>{far}</visual><collision>{far}</collision></link>
+  <joint name="f" type="fixed"><parent link="sliding_box"/><child link="far"/></joint>""")
+
+
+@pytest.mark.parametrize("part", FAR_PARTS)
+def test_a_part_past_the_farthest_coordinate_is_left_out_with_a_note(tmp_path, part):
+    """A box 1e300 long, a sphere of radius 1e200, a mesh scaled by 1e30, a part at 1e300: FCL
+    measured "inf" distances and numpy warned of overflows. Each is left out of every check
+    (transforms.too_far, the bound render's parts share), the rest checked."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        scene = matrix.Scene(robot_of(tmp_path, far_robot(tmp_path, part)), 0.0)
+        [problem] = scene.geometry.problems
+        assert "link 'far'" in problem.message and "past the 4.612e+10 m" in problem.message
+        assert "far" not in scene.geometry.parts
+        report = pose.check_pose(robot_of(tmp_path, far_robot(tmp_path, part)), {})
+        assert all(np.isfinite(c.distance) for c in report.closest), report.closest
+
+
+def test_a_pair_no_sample_bounded_keeps_its_distance_unknown():
+    """A tally whose pair has no bounding sample (index -1: its spheres' gaps were never
+    finite, as with a part at 1e200 before the bound) drew block -1 as the seed [0, -1]:
+    numpy refused it and the matrix said "--seed must be an integer, 0 or more, not 0". No
+    sample, nothing drawn or posed: the distance stays unknown."""
+    from urdftool.collision.pairs import Tally
+
+    assert matrix._distances(None, None, Tally.empty(2), 0) == [np.inf, np.inf]
+
+
 def test_cli_pose_exit_codes_and_json(run_cli, tmp_path):
     path = write(tmp_path, two_boxes(0, 1))
     colliding = run_cli("collisions", path, "--q", "slider=0.05")

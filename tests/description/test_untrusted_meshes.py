@@ -434,6 +434,39 @@ def test_a_mesh_some_of_whose_triangles_are_not_finite_says_so(tmp_path, kind):
         assert "1 of its 5 triangles" in findings[0].message
 
 
+def test_every_reading_of_a_mesh_by_trimesh_keeps_numpys_warnings_unsaid(tmp_path):
+    """Session 24: a GLB, always read a second time to count its vertices that are not finite,
+    whose node's matrix is 1e308 (trimesh tests whether it is rigid, and the test overflows)
+    printed numpy's "overflow encountered in dot" on every check; the first reading kept
+    it unsaid. Every reading by trimesh is ``reading._trimesh_load``."""
+    import warnings
+
+    import numpy
+    import trimesh
+
+    from urdftool.description.load import load
+    from urdftool.lint.engine import check_robot
+
+    import json
+    import struct
+
+    mesh = trimesh.Trimesh(numpy.eye(4)[:, :3][[3, 0, 1, 2]], [[0, 1, 2], [0, 1, 3], [0, 2, 3],
+                                                               [1, 2, 3]], process=False)
+    data = mesh.export(file_type="glb")  # its JSON chunk given the node's matrix
+    size = struct.unpack("<I", data[12:16])[0]
+    document = json.loads(data[20:20 + size])
+    document["nodes"][0]["matrix"] = [1e308] * 16
+    text = json.dumps(document).encode()
+    text += b" " * (-len(text) % 4)
+    rest = data[20 + size:]
+    (tmp_path / "m.glb").write_bytes(struct.pack("<III", 0x46546C67, 2, 20 + len(text) + len(rest))
+                                     + struct.pack("<II", len(text), 0x4E4F534A) + text + rest)
+    with warnings.catch_warnings(record=True) as said:  # (as errors, trimesh catches them)
+        warnings.simplefilter("always")
+        check_robot(load(str(_robot(tmp_path, "m.glb"))))
+    assert not [w for w in said if issubclass(w.category, RuntimeWarning)], said
+
+
 @pytest.mark.parametrize("head", ["", "g part\n"])  # urdftool's OBJ reader; trimesh's
 def test_a_mesh_with_a_coordinate_too_far_to_measure_is_refused_by_either_reader(tmp_path,
                                                                                  head):

@@ -79,8 +79,9 @@ def test_a_row_lacking_many_names_lists_a_dozen_and_how_many():
 def test_every_draw_between_limits_is_one_that_takes_any_span():
     """Limits of -1e308 and 1e308 (a span past the largest float) made numpy's uniform raise
     "Range exceeds valid bounds": a traceback of workspace, ik and dynamics --samples. Every
-    draw between limits is configuration.within (an ast scan holds it), which draws such a
-    span with each bound weighted and any other as numpy draws it."""
+    draw between limits is configuration.within (an ast scan holds it), which draws within
+    numbers.MAX_COORDINATE (session 24: limits of +-1e200 placed a link at 1e199, a workspace
+    "max reach inf m") and any other span as numpy draws it."""
     import ast
     import math
     from pathlib import Path
@@ -89,8 +90,11 @@ def test_every_draw_between_limits_is_one_that_takes_any_span():
 
     import urdftool
 
+    from urdftool.numbers import MAX_COORDINATE
+
     wide = config.within(config.random_stream(0), [-1e308, 0.0], [1e308, 1.0], (200, 2))
-    assert np.isfinite(wide).all() and wide[:, 0].min() < -1e307 and wide[:, 0].max() > 1e307
+    assert (abs(wide) < MAX_COORDINATE).all()
+    assert wide[:, 0].min() < -MAX_COORDINATE / 2 and wide[:, 0].max() > MAX_COORDINATE / 2
     assert (0 <= wide[:, 1]).all() and (wide[:, 1] <= 1).all()
     assert (config.within(config.random_stream(3), [2.0, -1.0], [1.0, math.pi], (5, 2)) ==
             config.random_stream(3).uniform([1.0, -1.0], [2.0, math.pi], (5, 2))).all()
@@ -106,8 +110,11 @@ def test_a_joint_whose_limits_span_past_the_largest_float_is_sampled(tmp_path):
         '<robot name="p"><link name="a"/><link name="b"/><joint name="s" type="prismatic">'
         '<parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
         '<limit lower="-1e308" upper="1e308" effort="1" velocity="1"/></joint></robot>')
+    from urdftool.numbers import MAX_COORDINATE
+
     values = config.random(config.variables_of(load(str(robot))), 50, 0).values
-    assert np.isfinite(values).all() and values.min() < -1e306 < 1e306 < values.max()
+    assert (abs(values) < MAX_COORDINATE).all()
+    assert values.min() < -MAX_COORDINATE / 2 < MAX_COORDINATE / 2 < values.max()
 
 
 @pytest.mark.parametrize("mimics, message", [
@@ -126,3 +133,31 @@ def test_setting_a_mimic_joint_names_the_joint_to_set(mimics, message):
     with pytest.raises(config.ConfigError) as error:
         config.from_words(variables, {given: "0.5"}, mimics=mimics)
     assert str(error.value) == message
+
+
+@pytest.mark.parametrize("given", ["words", "file", "joint values", "default"])
+def test_a_joint_value_past_the_farthest_coordinate_is_refused_however_given(tmp_path, given):
+    """--q s=1e200 of a prismatic joint (or its default, the middle of limits at 1e200 and
+    3e200) placed its link at 1e200: a workspace "max reach inf m", dynamics torques of NaN.
+    configuration.placeable, the one check of the values given (words, a q-file, dynamics'
+    joint values), refuses it at numbers.MAX_COORDINATE."""
+    from urdftool.errors import ConfigError
+
+    lower, upper = ("1e200", "3e200") if given == "default" else ("-1", "1")
+    robot = tmp_path / "p.urdf"
+    robot.write_text(
+        '<robot name="p"><link name="a"/><link name="b"/><joint name="s" type="prismatic">'
+        '<parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
+        f'<limit lower="{lower}" upper="{upper}" effort="1" velocity="1"/></joint></robot>')
+    loaded = load(str(robot))
+    variables = config.variables_of(loaded)
+    (tmp_path / "q.csv").write_text("s\n0.5\n1e200\n")
+    ask = {"words": lambda: config.from_words(variables, {"s": "1e200"}),
+           "file": lambda: config.from_file(variables, str(tmp_path / "q.csv")),
+           "joint values": lambda: config.joint_values(loaded, {"s": "-1e200"}),
+           "default": lambda: config.from_words(variables, {})}[given]
+    with pytest.raises(ConfigError, match=r"joint 's' = -?[12]e\+200.* is past the 4\.612e\+10 "
+                                          r"\(m or rad\) urdftool places a link within"):
+        ask()
+    if given != "default":
+        assert config.from_words(variables, {"s": "4e10"}).values[0, 0] == 4e10

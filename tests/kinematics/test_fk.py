@@ -625,3 +625,69 @@ def test_cli_machine_formats_write_no_signed_zero(run_cli, output_format):
     result = run_cli("fk", HUMANOID, "-f", output_format, "--matrix")
     assert result.exit_code == 0, result.output
     assert not re.search(r"(?<![\w.])-0\.0(?![\w.])", result.stdout)
+
+
+FAR_JOINT = """<robot name="r">
+  <link name="a"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0"
+    iyz="0"/></inertial><visual><geometry><box size="1 1 1"/></geometry></visual></link>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0"
+    iyz="0"/></inertial><visual><geometry><box size="1 1 1"/></geometry></visual></link>
+  <joint name="j" type="revolute"><parent link="a"/><child link="b"/>
+    <origin xyz="{x} 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+def _model_builder(build: str):
+    """(the builder of ``build``'s model, the error it refuses a robot with): urdftool's own
+    (fk, ik, workspace, collisions, diff), Pinocchio's of dynamics, yourdfpy's of render."""
+    from urdftool.errors import DynamicsError, FKError, SceneError
+    from urdftool.kinematics.fk import KinematicModel
+    from urdftool.kinematics.scene import posed
+    from urdftool.physics import dynamics
+
+    return {"fk": (KinematicModel, FKError), "dynamics": (dynamics.build, DynamicsError),
+            "render": (posed, SceneError)}[build]
+
+
+@pytest.mark.parametrize("build", ["fk", "dynamics", "render"])
+def test_a_joint_placed_past_the_farthest_coordinate_is_refused_by_every_model(tmp_path, build):
+    """A joint at 1e200: workspace said "max reach 0 m", ik "inf m", dynamics torques of NaN,
+    collisions distances of inf (its matrix "--seed must be an integer"), render numpy's
+    warnings. One check of joint origins (fk.placed_within, at numbers.MAX_COORDINATE) for
+    every model: urdftool's own (fk, ik, workspace, collisions, diff), Pinocchio's of dynamics,
+    yourdfpy's of render; just within, each builds."""
+    from conftest import load_text
+
+    make, error = _model_builder(build)
+    far = load_text(tmp_path, FAR_JOINT.format(x="1e200"))
+    with pytest.raises(error, match=r"joint 'j': <origin> xyz '1e\+200 0 0' is past the "
+                                    r"4\.612e\+10 m urdftool places a link within") as refused:
+        make(far)
+    assert refused.value.element is far.joints["j"].find("origin")
+    make(load_text(tmp_path, FAR_JOINT.format(x="4e10")))
+
+
+@pytest.mark.parametrize("attribute", ["multiplier", "offset"])
+@pytest.mark.parametrize("build", ["fk", "dynamics", "render"])
+def test_a_mimic_moving_its_link_past_the_farthest_coordinate_is_refused_by_every_model(
+        tmp_path, build, attribute):
+    """A prismatic mimic of multiplier (or offset) 1e200 placed its link at 5e199 for any value
+    of the joint it follows: workspace "max reach inf m", dynamics "total tau nan", collisions'
+    distances of inf. The one check of joint placements refuses it at its <mimic>."""
+    from conftest import load_text
+
+    make, error = _model_builder(build)
+    text = FAR_JOINT.format(x="1").replace("</robot>", f"""
+  <link name="c"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0"
+    iyz="0"/></inertial></link>
+  <joint name="m" type="prismatic"><parent link="a"/><child link="c"/><axis xyz="1 0 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+    <mimic joint="j" {attribute}="{{value}}"/></joint>
+</robot>""")
+    far = load_text(tmp_path, text.format(value="1e200"))
+    with pytest.raises(error, match=rf"joint 'm': <mimic {attribute}> 1e\+200 is past the "
+                                    r"4\.612e\+10 urdftool places a link") as refused:
+        make(far)
+    assert refused.value.element is far.joints["m"].find("mimic")
+    make(load_text(tmp_path, text.format(value="4e10")))

@@ -119,6 +119,35 @@ def test_a_moving_joint_without_a_value_is_a_scene_error_at_the_joint(tmp_path, 
     assert error.value.element is (joint if at == "joint" else joint.find("mimic"))
 
 
+@pytest.mark.parametrize("shape, xyz", [('<box size="1e300 1 1"/>', "0 0 0"),
+                                       ('<sphere radius="1e200"/>', "0 0 0"),
+                                       ('<cylinder radius="1" length="1e300"/>', "0 0 0"),
+                                       ('<mesh filename="t.stl" scale="1e30 1 1"/>', "0 0 0"),
+                                       ('<sphere radius="0.03"/>', "1e300 0 0")])
+@pytest.mark.parametrize("collision", [False, True])
+def test_a_part_past_the_farthest_coordinate_is_not_drawn_and_said(tmp_path, shape, xyz,
+                                                                   collision):
+    """trimesh's primitive of a box 1e300 long overflowed, a sphere of radius 1e200 had NaN
+    corners (numpy's warnings, the picture's casts of NaN): a part reaching past
+    MAX_COORDINATE is left out with a note (transforms.too_far, collisions' bound too)."""
+    import warnings
+
+    (tmp_path / "t.stl").write_text(
+        "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+        "endloop\nendfacet\nendsolid t\n")
+    far = f'<origin xyz="{xyz}"/><geometry>{shape}</geometry>'
+    text = ARM.replace('<link name="finger"><visual><geometry><sphere radius="0.03"/></geometry>'
+                       '</visual></link>', f'<link name="finger"><visual>{far}</visual>'
+                       f'<collision>{far}</collision></link>')
+    assert text != ARM
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        scene, _ = posed(load_text(tmp_path, text), collision=collision)
+    [note] = [p for p in scene.problems if "finger" in p]
+    assert "past the 4.612e+10 m" in note and note.endswith("not drawn")
+    assert "finger" not in scene.links and np.isfinite(scene.triangles).all()
+
+
 def test_triangles_are_posed_coloured_and_owned(tmp_path):
     robot = load_text(tmp_path, ARM)
     scene, warnings = posed(robot, {"shoulder": "90"}, degrees=True)

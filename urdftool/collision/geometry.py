@@ -124,6 +124,9 @@ def _part(robot, link: str, collision, meshes, problems) -> Part | None:
     else:
         return _refuse(problems, robot, shape, link, f"geometry <{kind}> is not supported")
     origin = transforms.from_origin(read_origin(collision))  # a malformed part counts as 0
+    far = transforms.too_far(origin, center - half, center + half)
+    if far:
+        return _refuse(problems, robot, shape, link, f"its {kind} {far}")
     box = origin.copy()
     box[:3, 3] = origin[:3, :3] @ center + origin[:3, 3]
     return Part(link, kind, geometry, origin, box, np.maximum(half, 1e-9), identity,

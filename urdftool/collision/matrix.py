@@ -264,7 +264,9 @@ def _distances(scene: Scene, checker: PairChecker, tally: Tally, seed) -> list[f
     samples is drawn and posed once, not once per pair (a large robot has a million such
     pairs)."""
     result = [float(distance) for distance in tally.min_distance]
-    unseen = np.nonzero(~np.isfinite(tally.min_distance))[0]
+    # (a pair no sample bounded, its sample -1, keeps its distance unknown: block -1 was drawn
+    # as the seed [seed, -1], which numpy refused: "--seed must be an integer ... not 0")
+    unseen = np.nonzero(~np.isfinite(tally.min_distance) & (tally.bound_sample >= 0))[0]
     order = unseen[np.argsort(tally.bound_sample[unseen], kind="stable")]
     block_poses = (None, None)
     for i in order:

@@ -567,12 +567,16 @@ class Configuration(Record):
     files: list  # display names of the launch files it read
     included: set  # the real paths of the files it includes
     incomplete: bool  # an include could not be followed, or a bound was reached
+    # (launch file as shown, line, the path as written) of each parameter file or launch file
+    # it names that leads outside the repository: not read (:func:`_leads_outside`)
+    outside: list
 
-    __slots__ = ("top", "loaded", "started", "described", "files", "included", "incomplete")
+    __slots__ = ("top", "loaded", "started", "described", "files", "included", "incomplete",
+                 "outside")
 
     def __init__(self, top: LaunchFile, loaded: list = NEW, started: list = NEW,
                  described: list = NEW, files: list = NEW, included: set = NEW,
-                 incomplete: bool = False) -> None:
+                 incomplete: bool = False, outside: list = NEW) -> None:
         self.top = top
         self.loaded = [] if loaded is NEW else loaded
         self.started = [] if started is NEW else started
@@ -580,6 +584,7 @@ class Configuration(Record):
         self.files = [] if files is NEW else files
         self.included = set() if included is NEW else included
         self.incomplete = incomplete
+        self.outside = [] if outside is NEW else outside
 
     @property
     def display(self) -> str:
@@ -859,9 +864,10 @@ def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
             _include(index, action, scope, when, configuration, packages, via + (launch.display,),
                      depth, remaps)
         elif isinstance(action, ParamFile):
-            configuration.loaded.append(_loaded(action, scope, when, launch, via))
+            configuration.loaded.append(_loaded(action, scope, when, launch, via, configuration))
         elif isinstance(action, Start):
-            files = tuple(_loaded(f, scope, when.also(_when_of(f.when, scope)), launch, via)
+            files = tuple(_loaded(f, scope, when.also(_when_of(f.when, scope)), launch, via,
+                                  configuration)
                           for f in action.files)
             arguments = tuple(resolve(word, scope) for value in action.arguments for word in words(value))
             if launch.ros == 1:  # roslaunch splits args= after substituting: $(arg controllers)
@@ -899,7 +905,8 @@ def _bind(action: Arg, scope: Scope, given: dict, free: bool, when: When) -> Non
 
 def _include(index, action: Include, scope: Scope, when: When, configuration: Configuration,
              packages: dict, via: tuple, depth: int, remaps: tuple = ()) -> None:
-    path, _ = resolve_path(action.path, scope)
+    path, resolved = resolve_path(action.path, scope)
+    _leads_outside(path, resolved, scope, action, configuration)
     target = index.included(_key(path)) if path is not None else None
     # a launch test cannot be included (ros2 launch asks it for generate_launch_description):
     # what it starts is never a deployment's
@@ -936,8 +943,35 @@ def _remapped(remaps: tuple, scope: Scope, launch: LaunchFile) -> tuple:
     return tuple(found)
 
 
-def _loaded(action: ParamFile, scope: Scope, when: When, launch: LaunchFile, via: tuple) -> Loaded:
+def _leads_outside(path: Path | None, resolved: Resolved, scope: Scope, action,
+                   configuration: Configuration) -> None:
+    """Record in ``configuration.outside`` a file ``action`` (an include, a parameter file)
+    names by a path leading outside the repository, itself or through a link (not a
+    package's: ``$(find pkg)`` of a package not in the repository is not known, not outside):
+    it is not read, and was left out without a word (a controller YAML at
+    ``../../outside/c.yaml``, an include of ``/etc/hostname``). Said as written."""
+    text = resolved.text
+    if path is not None or text is None or "\n" in text:
+        return
+    if text.count("\0") == 2:  # a file of a package of the repository, through a link
+        _, package, rest = text.split("\0")
+        folder = scope.packages.get(package)
+        named = folder / rest.strip("/") if folder is not None and rest.strip("/") else None
+        if named is None or not os.path.lexists(named):
+            return
+    elif "\0" in text:
+        return
+    else:
+        named = Path(text) if Path(text).is_absolute() else scope.launch.path.parent / text
+    if not inside(os.path.normpath(named), scope.root):
+        configuration.outside.append((scope.launch.display, action.line,
+                                      action.path.text or shown(resolved) or text))
+
+
+def _loaded(action: ParamFile, scope: Scope, when: When, launch: LaunchFile, via: tuple,
+            configuration: Configuration) -> Loaded:
     path, resolved = resolve_path(action.path, scope)
+    _leads_outside(path, resolved, scope, action, configuration)
     if resolved.free:
         when = when.also(When(True, resolved.free, ()))
     return Loaded(path, shown(resolved) or action.path.text, action.substitute,

@@ -119,6 +119,13 @@ class Runtime(Record):
                         found.setdefault(real_path(loaded.path), loaded.path)
         return list(found.values())
 
+    def outside(self) -> list[tuple[str, int | None, str]]:
+        """(launch file as shown, line, the path as written) of each parameter file or launch
+        file the robot's configurations name that leads outside the repository (not read),
+        once each."""
+        return list(dict.fromkeys(entry for c, relation in self.configurations if relation
+                                  for entry in c.outside))
+
     def unresolved_loads(self) -> list[Loaded]:
         return [loaded for c, relation in self.configurations if relation for loaded in c.loaded
                 if loaded.path is None]

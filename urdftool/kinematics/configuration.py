@@ -164,6 +164,7 @@ def from_words(variables: list[Variable], values: dict[str, str], degrees: bool 
     for name, value in assignments(variables, values, degrees, mimics).items():
         row[index[name]] = value
     row = row[None, :]
+    placeable(variables, row)
     return Configurations(variables, row, limit_warnings(variables, row))
 
 
@@ -220,6 +221,12 @@ def joint_values(robot, q: dict[str, str], v: dict[str, str] | None = None,
     warnings = limit_warnings(given, row)
     parsed[0] = {**{variable.name: variable.default for variable in variables
                     if variable.default != 0.0}, **parsed[0]}
+    try:
+        placed = [variable for variable in variables if variable.name in parsed[0]]
+        placeable(placed, np.array([[parsed[0][variable.name] for variable in placed]]))
+    except ConfigError as error:
+        error.argument = "q"
+        raise
     return JointValues(*parsed, warnings)
 
 
@@ -254,6 +261,7 @@ def from_file(variables: list[Variable], path: str, degrees: bool = False,
         scale = np.array([math.pi / 180.0 if degrees and variables[c].angular else 1.0
                           for c in columns])
         values[:, columns] = table * scale
+    placeable(variables, values)
     return Configurations(variables, values, limit_warnings(variables, values))
 
 
@@ -503,18 +511,36 @@ def random_stream(seed):
 def within(generator, lower, upper, size: tuple[int, int]) -> np.ndarray:
     """Values drawn uniformly between ``lower`` and ``upper`` (per column), ``size`` of them: the
     one uniform draw between joint limits (a scan holds it). Limits written the wrong way round
-    are a range all the same (numpy refuses them); a span past the largest float (limits of
-    -1e308 and 1e308, where numpy's uniform raises "Range exceeds valid bounds": a traceback of
-    workspace, dynamics --samples and ik) is drawn with each bound weighted, which never
-    overflows; other spans as numpy draws them."""
-    low, high = np.minimum(lower, upper), np.maximum(lower, upper)
-    with np.errstate(over="ignore"):
-        wide = ~np.isfinite(high - low)
-    if not wide.any():
-        return generator.uniform(low, high, size=size)
-    drawn = generator.random(size=size)
-    with np.errstate(over="ignore", invalid="ignore"):
-        return np.where(wide, low * (1 - drawn) + high * drawn, low + (high - low) * drawn)
+    are a range all the same (numpy refuses them); limits past
+    :data:`~urdftool.numbers.MAX_COORDINATE` are drawn within it, as every value given is
+    (:func:`placeable`): a prismatic joint of limits +-1e200 placed its link at 1e199 (a
+    workspace "max reach inf m"), and numpy's uniform raised "Range exceeds valid bounds" for
+    a span past the largest float."""
+    from urdftool.numbers import MAX_COORDINATE
+
+    low = np.clip(np.minimum(lower, upper), -MAX_COORDINATE, MAX_COORDINATE)
+    high = np.clip(np.maximum(lower, upper), -MAX_COORDINATE, MAX_COORDINATE)
+    return generator.uniform(low, high, size=size)
+
+
+def placeable(variables: list[Variable], values: np.ndarray) -> None:
+    """ConfigError for the first joint value past :data:`~urdftool.numbers.MAX_COORDINATE`
+    ([m] or [rad]; a default too: mid-range of limits at 1e200): a link placed there is past
+    what urdftool computes with (every pose below it rounded to nothing or squared to inf),
+    whichever command poses it: the one check of the values given (:func:`from_words`,
+    :func:`from_file`, :func:`joint_values`), as :func:`within` is of the values drawn."""
+    from urdftool.numbers import MAX_COORDINATE, number as number_text
+
+    with np.errstate(invalid="ignore"):
+        far = np.argwhere(~(np.abs(values) < MAX_COORDINATE))
+    if len(far):
+        row, column = far[0]
+        where = "" if len(values) == 1 else f" (row {row + 1})"
+        if values[row, column] == variables[column].default != 0.0:
+            where += " (its default, the middle of its limits)"
+        raise ConfigError(f"joint '{variables[column].name}' = {number_text(values[row, column])}"
+                          f"{where} is past the {number_text(MAX_COORDINATE)} (m or rad) "
+                          "urdftool places a link within")
 
 
 def random(variables: list[Variable], count: int, seed=None,

@@ -28,7 +28,8 @@ from urdftool.kinematics import transforms
 from urdftool.kinematics.tree import children_by_link, root_link
 from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
                             Variable, mimic_source, mimics_of, variables_of)
-from urdftool.numbers import length as vector_length, power, unit as vector_unit
+from urdftool.numbers import (MAX_COORDINATE, length as vector_length, power,
+                              unit as vector_unit)
 
 FLOATING_ROOT = "root_joint"
 # [links] up to which Pinocchio's model is built with each KinematicModel, for urdfdom's verdict
@@ -330,25 +331,63 @@ class _Scratch:
 NQ = {"revolute": 1, "prismatic": 1, "continuous": 2, "floating": 7, "planar": 4}  # Pinocchio's
 
 
+def placed_within(robot) -> None:
+    """FKError for the first joint whose ``<origin>`` is no pose (:func:`_placement`): the one
+    check of joint origins, which :class:`KinematicModel` makes as it builds (fk, ik,
+    workspace, collisions, diff) and the models built otherwise ask (dynamics: Pinocchio from
+    the text; render: yourdfpy); once per robot."""
+    def check() -> bool:
+        for element in robot.joints.values():
+            _placement(element)
+        return True
+
+    robot.memo(placed_within, check)
+
+
 def _placement(element) -> np.ndarray:
     """The 4x4 transform of a joint's ``<origin>``, its rotation as Pinocchio has it (urdfdom's
     quaternion of the roll-pitch-yaw, then Eigen's matrix of the quaternion: the same numbers
     to the bit, so that an angle at +-pi reads as Pinocchio's did); FKError when a number in it
-    is malformed (urdfdom refuses it: there is no pose to give)."""
+    is malformed (urdfdom refuses it: there is no pose to give), or places the link past
+    :data:`urdftool.numbers.MAX_COORDINATE` (every pose below it rounded or overflowed)."""
     from urdftool.description.values import origin
 
     found = origin(element)
     problem = found.problem or (None if all(map(math.isfinite, (*found.xyz, *found.rpy))) else
                                 f"holds a number that is not finite (xyz {_numbers(found.xyz)}, "
                                 f"rpy {_numbers(found.rpy)}): no pose has it")
+    if not problem and not max(map(abs, found.xyz)) < MAX_COORDINATE:
+        from urdftool.numbers import number
+
+        problem = (f"xyz {_numbers(found.xyz)} is past the {number(MAX_COORDINATE)} m urdftool "
+                   "places a link within")
     if problem:  # inf: math.sin raised ValueError; nan: every pose below it nan, silently
         raise FKError(f"joint '{element.get('name')}': <origin> {problem}",
                       found.element if found.element is not None else element)
+    mimic = element.find("mimic")
+    if mimic is not None:  # multiplier 1e200: its link at 1e200 whatever the joint it follows
+        _mimic_within(element, mimic)
     matrix = np.eye(4)
     matrix[:3, 3] = found.xyz
     if found.rpy != (0.0, 0.0, 0.0):  # the identity to the bit, without the products
         matrix[:3, :3] = _rotation(*found.rpy)
     return matrix
+
+
+def _mimic_within(element, mimic) -> None:
+    """FKError for a ``<mimic>`` whose multiplier or offset is past
+    :data:`~urdftool.numbers.MAX_COORDINATE`: it moves its link past it whatever the joint it
+    follows (values within the bound), a place no pose keeps (a workspace "max reach inf m",
+    dynamics "total tau nan", collisions' distances of inf)."""
+    from urdftool.description.values import parse_numbers
+    from urdftool.numbers import number
+
+    for attribute in ("multiplier", "offset"):
+        values, _ = parse_numbers(mimic.get(attribute), 1)
+        if values and math.isfinite(values[0]) and not abs(values[0]) < MAX_COORDINATE:
+            raise FKError(f"joint '{element.get('name')}': <mimic {attribute}> "
+                          f"{number(values[0])} is past the {number(MAX_COORDINATE)} urdftool "
+                          "places a link (or turns it, in rad) within", mimic)
 
 
 def _numbers(values) -> str:

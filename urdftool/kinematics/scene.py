@@ -22,6 +22,8 @@ from urdftool.errors import MeshProblem, SceneError, described
 from urdftool.description.urdf import MOVING
 from urdftool.numbers import power, unit
 
+# the scene's metadata: the parts of links left out of it, as notes (transforms.too_far)
+LEFT_OUT = "urdftool_left_out"
 DEFAULT_COLOUR = (0.62, 0.64, 0.68)  # [0, 1] rgb of geometry without a material colour
 # Triangles a posed scene may hold, checked before any is placed: the per-mesh limit is 2 million
 # (check --max-triangles), and one such mesh on many links is that many copies (72 bytes each).
@@ -65,7 +67,7 @@ class SceneModel:
         self.collision = collision
         self.urdf = _yourdfpy(robot, collision)
         self.scene = self.urdf.collision_scene if collision else self.urdf.scene
-        self.problems: list[str] = []
+        self.problems: list[str] = list(self.scene.metadata.get(LEFT_OUT, ()))
         self._colours: dict[str, tuple] = {}
         self._add_meshes()
         self.variables = [v for v in variables_of(robot)
@@ -97,6 +99,7 @@ class SceneModel:
         import numpy as np
 
         from urdftool.description.meshes import load_mesh
+        from urdftool.kinematics import transforms
 
         for link in self.urdf.robot.links:
             for element in (link.collisions if self.collision else link.visuals):
@@ -111,6 +114,10 @@ class SceneModel:
                     self.problems.append(f"link '{link.name}': {problem}; not drawn")
                     continue
                 origin = element.origin if element.origin is not None else np.eye(4)
+                far = transforms.too_far(origin, *loaded.bounds)
+                if far:
+                    self.problems.append(f"link '{link.name}': its mesh {far}; not drawn")
+                    continue
                 node = self.scene.add_geometry(loaded, parent_node_name=link.name,
                                                transform=origin)
                 self._colours[node] = self._material_colour(element)
@@ -209,6 +216,13 @@ def _yourdfpy(robot, collision: bool):
     logging.getLogger("yourdfpy").setLevel(logging.CRITICAL)  # its warnings are rule findings
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              remove_comments=True, remove_blank_text=True)
+    from urdftool.errors import FKError
+    from urdftool.kinematics.fk import placed_within
+
+    try:
+        placed_within(robot)
+    except FKError as error:
+        raise SceneError(str(error), error.element) from None
     root = etree.fromstring(robot.urdf.encode("utf-8"), parser)
     _follow_variables(robot, root)
     try:
@@ -282,10 +296,15 @@ def _scene_graph(urdf, collision: bool):
             found = f"{name}_{counts[name]}"
         return found
 
+    left_out = scene.metadata[LEFT_OUT] = []
     for link in urdf.robot.links:
         parts = []
         for shape in (link.collisions if collision else link.visuals):
             if shape.geometry is None:
+                continue
+            far = _too_far(shape)
+            if far:  # (trimesh's primitive of it: numpy's overflow, NaN corners)
+                left_out.append(f"link '{link.name}': its {far}; not drawn")
                 continue
             made = urdf._geometry2trimeshscene(geometry=shape.geometry, load_file=False,
                                                force_mesh=collision, skip_materials=collision)
@@ -311,6 +330,29 @@ def _scene_graph(urdf, collision: bool):
             scene.add_geometry(geometry=geometry, geom_name=key, node_name=node,
                                parent_node_name=link.name, transform=transform)
     return scene
+
+
+def _too_far(shape) -> str | None:
+    """:func:`urdftool.kinematics.transforms.too_far` of a box, cylinder or sphere of
+    yourdfpy's (a mesh's is asked when it is loaded: :meth:`SceneModel._add_meshes`), with
+    what it is."""
+    import numpy as np
+
+    from urdftool.kinematics import transforms
+
+    geometry = shape.geometry
+    if geometry.box is not None:
+        kind, half = "box", np.asarray(geometry.box.size, dtype=float) / 2
+    elif geometry.cylinder is not None:
+        kind, half = "cylinder", np.array([geometry.cylinder.radius, geometry.cylinder.radius,
+                                           geometry.cylinder.length / 2], dtype=float)
+    elif geometry.sphere is not None:
+        kind, half = "sphere", np.full(3, float(geometry.sphere.radius))
+    else:
+        return None
+    far = transforms.too_far(shape.origin if shape.origin is not None else np.eye(4), -half,
+                             half)
+    return f"{kind} {far}" if far else None
 
 
 def _follow_variables(robot, root) -> None:

@@ -22,6 +22,24 @@ def from_origin(origin) -> np.ndarray:
     return from_xyz_rpy(origin.xyz, origin.rpy)
 
 
+def too_far(origin: np.ndarray, low, high) -> str | None:
+    """Why a part of a link is not placed, or None: the geometry whose bounds in its own frame
+    are ``low``..``high`` [m], posed by ``origin`` (4x4, in the link), reaches past
+    :data:`urdftool.numbers.MAX_COORDINATE` (a box 1e300 long, a sphere of radius 1e200, a
+    mesh scaled by 1e30, an origin at 1e300): the one bound of collisions' and render's parts,
+    which FCL and trimesh overflowed on (numpy's warnings, NaN corners, distances of inf)."""
+    from urdftool.numbers import MAX_COORDINATE, number
+
+    low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+    with np.errstate(all="ignore"):
+        centre = origin[:3, :3] @ (low / 2 + high / 2) + origin[:3, 3]
+        far = float((np.abs(centre) + np.abs(origin[:3, :3]) @ (high / 2 - low / 2)).max())
+    if far < MAX_COORDINATE:  # (NaN is not)
+        return None
+    return (f"reaches {number(far)} m from its link's frame, past the {number(MAX_COORDINATE)} m "
+            "urdftool places geometry within")
+
+
 def rotation_from_rpy(rpy: np.ndarray) -> np.ndarray:
     """R = Rz(yaw) Ry(pitch) Rx(roll) for ``rpy[..., 3]``."""
     roll, pitch, yaw = rpy[..., 0], rpy[..., 1], rpy[..., 2]

@@ -86,11 +86,16 @@ def build(robot, floating: bool = False) -> Model:
     reduced model)."""
     import pinocchio as pin
 
+    from urdftool.errors import FKError
     from urdftool.kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
-    from urdftool.kinematics.fk import FLOATING_ROOT
+    from urdftool.kinematics.fk import FLOATING_ROOT, placed_within
     from urdftool.kinematics.native import build_model
     from urdftool.kinematics.tree import own_free_base
 
+    try:  # (an origin at 1e200: torques of NaN)
+        placed_within(robot)
+    except FKError as error:
+        raise DynamicsError(str(error), error.element) from None
     own = own_free_base(robot)
     root = (own or FLOATING_ROOT) if floating else None
     model = build_model(robot, *((pin.JointModelFreeFlyer(), root) if floating and not own

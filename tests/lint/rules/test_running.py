@@ -59,3 +59,41 @@ def test_a_launch_file_with_a_syntax_error_is_located_at_its_line(tmp_path):
     found = [f for f in _checked(_folder(tmp_path, GOOD.format(extra="\n\nif x:\nfoo(")))
              if f.code == "U620"]
     assert [(f.location.line, "not valid Python" in f.message) for f in found] == [(8, True)]
+
+
+OUTSIDE = '''<launch>
+  <let name="robot_description" value="$(command 'xacro $(find-pkg-share case_unread_launch)/pan.urdf.xacro')"/>
+  <node pkg="robot_state_publisher" exec="robot_state_publisher">
+    <param name="robot_description" value="$(var robot_description)"/>
+  </node>
+  <node pkg="controller_manager" exec="ros2_control_node">
+    <param from="$(dirname)/../../../outside/ctrl.yaml"/>
+    <param from="$(find-pkg-share case_unread_launch)/params/linked.yaml"/>
+    <param from="$(find-pkg-share case_unread_launch)/params/ctrl.yaml"/>
+    <param from="$(find-pkg-share not_here)/params/ctrl.yaml"/>
+  </node>
+  <include file="/etc/hostname"/>
+</launch>
+'''
+
+
+def test_a_file_a_launch_file_names_outside_the_repository_is_a_note_naming_it(tmp_path):
+    """A controller YAML at ``$(dirname)/../../../outside/ctrl.yaml``, one inside through a link
+    leading out, an include of ``/etc/hostname``: none is read (containment), and each was
+    left out without a word. A note at each line, naming the path as written; a package not
+    in the repository (``$(find-pkg-share not_here)``) is not known, not outside: nothing."""
+    import os
+
+    folder = tmp_path / "repo" / "pkg"
+    shutil.copytree(CASES / "U620_launch_file_not_read", folder)
+    (tmp_path / "repo" / ".git").mkdir()
+    (tmp_path / "outside").mkdir()
+    shutil.copy(folder / "params" / "ctrl.yaml", tmp_path / "outside" / "ctrl.yaml")
+    os.symlink(tmp_path / "outside" / "ctrl.yaml", folder / "params" / "linked.yaml")
+    (folder / "launch" / "pan.launch.xml").write_text(OUTSIDE)
+    found = [f for f in _checked(folder) if f.code == "U620"]
+    assert [(f.location.line, f.message.split("'")[1]) for f in found] == [
+        (7, "$(dirname)/../../../outside/ctrl.yaml"),
+        (8, "$(find-pkg-share case_unread_launch)/params/linked.yaml"), (12, "/etc/hostname")]
+    assert all(f.location.file.endswith("launch/pan.launch.xml") and f.severity.value == "info"
+               and "leads outside the repository: not read" in f.message for f in found)

@@ -29,11 +29,11 @@ from urdftool.description.collada import parser
 from urdftool.description.xml import entity_uses
 from urdftool.description.files import TooLarge, inside, read_regular
 from urdftool.description.inputs import MeshLimits
-from urdftool.description.mesh_arrays import KEY_RANGE
 from urdftool.description.meshes.counting import triangle_count
 from urdftool.description.meshes.run_cache import once, stamp_of
 from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem, described
+from urdftool.numbers import MAX_COORDINATE
 
 NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was recovered
 # mesh metadata: which of its triangles use vertices that are not finite numbers (trimesh
@@ -141,10 +141,9 @@ def refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:
                                        f"limit of {limits.max_triangles}; decimate it")
 
 
-# [the mesh's own unit] beyond, a mesh is not measured: its vertices merge at 1e-8 as 64-bit
-# integers (mesh_arrays.KEY_RANGE, 4.6e10); its volume and inertia take the third and fifth
-# powers of what fits
-MAX_COORDINATE = KEY_RANGE
+# [the mesh's own unit] beyond numbers.MAX_COORDINATE, a mesh is not measured: its vertices
+# merge at 1e-8 as 64-bit integers (mesh_arrays.KEY_RANGE, 4.6e10); its volume and inertia take
+# the third and fifth powers of what fits
 
 
 def refuse_too_far(uri: str, vertices) -> None:
@@ -270,11 +269,9 @@ def _non_finite(data: bytes, suffix: str, path: Path, limits: MeshLimits) -> tup
     """(the triangles of the file whose vertices are not all finite numbers, its triangles),
     the file read again by trimesh unprocessed; (0, 0) when it cannot be."""
     import numpy
-    import trimesh
 
     try:
-        raw = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=False,
-                           resolver=_geometry_resolver(path, limits))
+        raw = _trimesh_load(data, suffix[1:], False, path, limits)
         faces, vertices = numpy.asarray(raw.faces), numpy.asarray(raw.vertices, dtype=float)
         if not len(faces):
             return 0, 0
@@ -304,6 +301,20 @@ def _may_hold_non_finite(data: bytes, suffix: str) -> bool:
     return _NOT_FINITE_SIGN.search(data) is not None
 
 
+def _trimesh_load(data: bytes, file_type: str, process: bool, path: Path, limits: MeshLimits):
+    """trimesh's mesh of ``data``, every read of a mesh by trimesh: numpy's warnings on
+    vertices not finite or too far (merging them in integers), or on a glTF node's matrix of
+    1e308 (trimesh's test of it overflows), are left unsaid here: what matters of each is said
+    where it is found (NOT_FINITE, refuse_too_far); the second reading that counts them printed
+    them (a GLB, always read again)."""
+    import trimesh
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return trimesh.load(io.BytesIO(data), file_type=file_type, force="mesh", process=process,
+                            resolver=_geometry_resolver(path, limits))
+
+
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     import logging
 
@@ -317,19 +328,14 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
     suffix = path.suffix.lower()
     try:
         try:
-            with warnings.catch_warnings():  # numpy's, on vertices not finite or too far
-                # (merging them in integers): each is said below (NOT_FINITE, refuse_too_far)
-                warnings.simplefilter("ignore", RuntimeWarning)
-                loaded = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh",
-                                      process=True, resolver=_geometry_resolver(path, limits))
+            loaded = _trimesh_load(data, suffix[1:], True, path, limits)
         except Exception as error:  # pycollada refuses XML that is not well-formed
             recovered = recovered_collada(data) if suffix == ".dae" and \
                 "XML Parsing Error" in str(error) else None
             if recovered is None:
                 raise
             data, malformed = recovered
-            loaded = trimesh.load(io.BytesIO(data), file_type="dae", force="mesh",
-                                  process=True, resolver=_geometry_resolver(path, limits))
+            loaded = _trimesh_load(data, "dae", True, path, limits)
     except Exception as error:  # trimesh raises many types for a bad file
         raise MeshProblem("corrupt", f"mesh '{uri}' does not load: {described(error)}") from None
     if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:

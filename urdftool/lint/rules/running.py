@@ -8,7 +8,7 @@ condition when it does so only under an argument or condition (docs/certainty.md
 from __future__ import annotations
 
 from urdftool.description.companions import parameter_files
-from urdftool.description.runtime import together, unread_describing
+from urdftool.description.runtime import runtime, together, unread_describing
 from urdftool.diagnostics import Location
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.lint.rules.controllers import label, shared_commands
@@ -52,7 +52,7 @@ def controllers_started_together(robot):
 
 @rule("U620", "launch-file-not-read", Severity.INFO)
 def launch_file_not_read(robot):
-    """A launch file that names the robot file could not be read.
+    """A launch file that names the robot file could not be read, or a file it names is not.
 
     Launch files are read, never run (docs/launch.md): one that is not well-formed, not valid
     Python (or too deep for Python's own parser), over the size limit or left with a merge
@@ -60,11 +60,15 @@ def launch_file_not_read(robot):
     xacro arguments it builds the robot with and the SRDF it gives MoveIt are not known, and
     are not checked: companions that only it names are not found. A note at the launch file
     (where the parser stopped, when it said), saying why; the robot is checked as if the file
-    were not there. Launch tests are left out (a test is not a deployment).
+    were not there. Launch tests are left out (a test is not a deployment). A parameter file
+    or launch file one names by a path leading outside the repository (itself or through a
+    link) is not read either: a note at the line naming it, for a launch file that describes
+    the robot.
 
     Bad: ``launch/robot.launch.py`` loading ``config/ctrl.yaml`` and holding ``x = a.b.b...``
-    100,000 attributes long (``RecursionError`` in ``ast``)
-    Good: a launch file Python's parser reads
+    100,000 attributes long (``RecursionError`` in ``ast``); ``<rosparam
+    file="$(dirname)/../../other/ctrl.yaml"/>`` leading out of the repository
+    Good: a launch file Python's parser reads, naming files inside the repository
     """
     if robot.path == "-":
         return
@@ -73,3 +77,8 @@ def launch_file_not_read(robot):
             f"this launch file names the robot and could not be read ({problem}): the "
             "controllers, parameter files and xacro arguments it gives the robot are not known, "
             "and not checked")
+    for display, line, written in runtime(robot).outside():
+        yield Location(display, line), (
+            f"this launch file names '{written}', which leads outside the repository: not read, "
+            "so the controllers, parameters and launch files it holds are not known, and not "
+            "checked")
