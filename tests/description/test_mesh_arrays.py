@@ -84,8 +84,9 @@ def test_corners_that_differ_by_sign_are_not_merged():
 def test_rows_sharing_a_hash_are_still_told_apart(monkeypatch):
     keys = np.array([[1, 2, 3], [4, 5, 6], [1, 2, 3], [4, 5, 6]], dtype=np.int64)
     # every row hashes alike: only the check against the rows can tell them apart
-    monkeypatch.setattr(mesh_arrays, "_row_hash", lambda rows: np.zeros(len(rows), np.uint64))
-    first, inverse = mesh_arrays._unique_rows(keys)
+    monkeypatch.setattr(mesh_arrays, "_row_hash",
+                        lambda columns: np.zeros(columns.shape[1], np.uint64))
+    first, inverse = mesh_arrays._unique_rows(np.ascontiguousarray(keys.T))
     assert first.tolist() == [0, 1] and inverse.tolist() == [0, 1, 0, 1]
 
 
@@ -603,8 +604,8 @@ def test_unique_rows_are_the_first_of_each_distinct_row_in_order_of_first_use(mo
         for weak in (False, True):  # every row hashing alike: told apart by the rows
             if weak:
                 monkeypatch.setattr(mesh_arrays, "_row_hash",
-                                    lambda rows: np.zeros(len(rows), np.uint64))
-            first, inverse = mesh_arrays._unique_rows(keys)
+                                    lambda columns: np.zeros(columns.shape[1], np.uint64))
+            first, inverse = mesh_arrays._unique_rows(np.ascontiguousarray(keys.T))
             assert first.tolist() == expected_first and inverse.tolist() == expected_inverse
             monkeypatch.undo()
 
@@ -653,3 +654,18 @@ def test_mass_properties_are_trimeshs_to_the_bit():
                 _trimeshs_mass_properties(vertices[faces])
         for key in ("volume", "center_mass", "inertia"):
             assert np.asarray(ours[key]).tobytes() == np.asarray(theirs[key]).tobytes()
+
+
+@pytest.mark.parametrize("subdivisions", [2, 7])  # 162 vertices; 163,842: int64 edge keys
+def test_watertightness_is_trimeshs_for_either_width_of_edge_keys(subdivisions):
+    import trimesh
+
+    sphere = trimesh.creation.icosphere(subdivisions=subdivisions)
+    faces = np.asarray(sphere.faces, dtype=np.int64)
+    assert (len(sphere.vertices) > 65536) == (subdivisions == 7)
+    opened = trimesh.Trimesh(sphere.vertices, faces[1:], process=False)
+    doubled = np.vstack([faces, faces[:1]])  # an edge shared by three faces
+    assert mesh_arrays.is_watertight(faces) and sphere.is_watertight
+    assert not mesh_arrays.is_watertight(faces[1:]) and not opened.is_watertight
+    assert not mesh_arrays.is_watertight(doubled)
+    assert not trimesh.Trimesh(sphere.vertices, doubled, process=False).is_watertight
