@@ -97,6 +97,19 @@ def test_dynamics_unknown_joint_is_usage_error(run_cli):
                              "number\n")
 
 
+@pytest.mark.parametrize("ask", ["configuration", "velocity"])
+def test_a_name_the_model_lacks_is_a_dynamics_error_not_an_index_error(arm, ask):
+    """Model.configuration/velocity called from a script with a name the model lacks (the
+    command line checks names first): Pinocchio's index one past the last was an IndexError."""
+    from urdftool.errors import DynamicsError
+
+    with pytest.raises(DynamicsError,
+                       match="'wrist' is not a joint of the model \\(shoulder, elbow"):
+        getattr(arm, ask)({"shoulder": 0.1, "wrist": 0.2})
+    assert getattr(arm, ask)({"shoulder": 0.1}).shape == (arm.model.nq if ask == "configuration"
+                                                          else arm.model.nv,)
+
+
 def test_joint_values_say_which_input_is_wrong(tmp_path):
     from urdftool.kinematics.configuration import ConfigError, joint_values
 

@@ -47,6 +47,16 @@ class Model:
             full[joint] = multiplier * values.get(variable, 0.0) + (offset if offsets else 0.0)
         return full
 
+    def _joint_id(self, name: str) -> int:
+        """The model's index of joint ``name``; DynamicsError for a name it does not have (Pinocchio
+        answers njoints, one past the last, and the caller's lookup was an IndexError: the
+        command line checks names first, :func:`joint_values`, a script calling the API did not)."""
+        joint_id = self.model.getJointId(name)
+        if not 0 < joint_id < self.model.njoints:
+            raise DynamicsError(f"'{name}' is not a joint of the model "
+                                f"({', '.join(self.model.names[1:]) or 'no joints'})")
+        return joint_id
+
     def configuration(self, values: dict[str, float]) -> np.ndarray:
         """Pinocchio's q for variable values by name; mimic joints follow their variable."""
         import pinocchio as pin
@@ -59,7 +69,7 @@ class Model:
         for name, value in self._expanded(values, offsets=True).items():
             if self.root and name.startswith(f"{self.root}."):
                 continue
-            joint = self.model.joints[self.model.getJointId(name)]
+            joint = self.model.joints[self._joint_id(name)]
             if joint.nq == 2:  # continuous: (cos, sin)
                 q[joint.idx_q:joint.idx_q + 2] = (math.cos(value), math.sin(value))
             else:
@@ -73,7 +83,7 @@ class Model:
             if self.root and name.startswith(f"{self.root}."):  # the twist, in the root's order
                 v[FLOATING_COORDINATES.index(name[len(self.root) + 1:])] = value
                 continue
-            v[self.model.joints[self.model.getJointId(name)].idx_v] = value
+            v[self.model.joints[self._joint_id(name)].idx_v] = value
         return v
 
 
