@@ -88,8 +88,8 @@ def build(robot, floating: bool = False) -> Model:
     from urdftool.kinematics.fk import FLOATING_ROOT, placed_within
     from urdftool.kinematics.native import build_model
 
-    try:  # (an origin at 1e200: torques of NaN)
-        placed_within(robot)
+    try:  # (a joint's or a centre of mass's origin at 1e200: torques of NaN)
+        placed_within(robot, masses=True)
     except FKError as error:
         raise DynamicsError(str(error), error.element) from None
     root = FLOATING_ROOT if floating else None
