@@ -691,3 +691,22 @@ def test_a_mimic_moving_its_link_past_the_farthest_coordinate_is_refused_by_ever
         make(far)
     assert refused.value.element is far.joints["m"].find("mimic")
     make(load_text(tmp_path, text.format(value="4e10")))
+
+
+def test_a_centre_of_mass_past_the_farthest_coordinate_is_refused_by_the_dynamics(tmp_path):
+    """An ``<inertial><origin xyz="1e200 0 0">``: dynamics said "M(q) is singular" and torques
+    of NaN. The one check of placements, asked for masses by the dynamics, refuses it at the
+    origin; kinematics (which has no masses) and just within the bound build."""
+    from conftest import load_text
+    from urdftool.errors import DynamicsError
+    from urdftool.kinematics.fk import KinematicModel
+    from urdftool.physics import dynamics
+
+    text = FAR_JOINT.format(x="1").replace('<link name="b"><inertial>',
+                                           '<link name="b"><inertial><origin xyz="{com}"/>')
+    far = load_text(tmp_path, text.replace("{com}", "1e200 0 0"))
+    with pytest.raises(DynamicsError, match=r"link 'b': <inertial><origin> xyz '1e\+200 0 0' is "
+                                            r"past the 4\.612e\+10 m urdftool places a centre"):
+        dynamics.build(far)
+    KinematicModel(far)
+    dynamics.build(load_text(tmp_path, text.replace("{com}", "4e10 0 0")))

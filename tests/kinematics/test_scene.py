@@ -92,7 +92,8 @@ def test_an_axis_is_posed_and_drawn_as_urdftool_fk_reads_it(tmp_path, written, u
 
 def test_an_axis_with_no_direction_is_a_scene_error_at_its_joint(tmp_path):
     robot = load_text(tmp_path, ARM.replace('<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>', 1))
-    with pytest.raises(SceneError, match="'shoulder': <axis xyz> '0 0 0' has no direction") as error:
+    with pytest.raises(SceneError,
+                       match="'shoulder': <axis xyz> '0 0 0' has no direction") as error:
         posed(robot)
     assert error.value.element is robot.joints["shoulder"]
 

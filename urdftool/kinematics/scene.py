@@ -213,16 +213,16 @@ def _yourdfpy(robot, collision: bool):
     import yourdfpy
     from lxml import etree
 
-    logging.getLogger("yourdfpy").setLevel(logging.CRITICAL)  # its warnings are rule findings
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
-                             remove_comments=True, remove_blank_text=True)
     from urdftool.errors import FKError
     from urdftool.kinematics.fk import placed_within
 
-    try:
+    try:  # (a joint at 1e200: numpy's warnings, the picture NaN)
         placed_within(robot)
     except FKError as error:
         raise SceneError(str(error), error.element) from None
+    logging.getLogger("yourdfpy").setLevel(logging.CRITICAL)  # its warnings are rule findings
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             remove_comments=True, remove_blank_text=True)
     root = etree.fromstring(robot.urdf.encode("utf-8"), parser)
     _follow_variables(robot, root)
     try:
@@ -248,8 +248,8 @@ def _yourdfpy(robot, collision: bool):
 
 
 def _unit_axes(robot, model) -> None:
-    """Each moving joint's axis in yourdfpy's ``model`` as :func:`urdftool.kinematics.fk.unit_axis`
-    reads it (the one reading of an axis): yourdfpy rotated about the axis as written, so a
+    """Each moving joint's axis in yourdfpy's ``model`` as
+    :func:`urdftool.kinematics.fk.unit_axis` reads it (the one reading of an axis): yourdfpy rotated about the axis as written, so a
     child on ``0 0 0`` or ``1e-320 0 0`` was posed at NaN (drawn nowhere, numpy's warnings) and
     one on ``1e308 1e308 1e308`` overflowed. SceneError at the joint for an axis with no
     direction."""

@@ -102,8 +102,8 @@ def build(robot, floating: bool = False) -> Model:
     from urdftool.kinematics.native import build_model
     from urdftool.kinematics.tree import own_free_base
 
-    try:  # (an origin at 1e200: torques of NaN)
-        placed_within(robot)
+    try:  # (a joint's or a centre of mass's origin at 1e200: torques of NaN)
+        placed_within(robot, masses=True)
     except FKError as error:
         raise DynamicsError(str(error), error.element) from None
     own = own_free_base(robot)
