@@ -418,7 +418,7 @@ def test_a_mesh_measured_for_its_box_only_is_not_merged(tmp_path, monkeypatch, s
     facts = meshes.mesh_facts(_robot(tmp_path), "m.stl", scale)
     assert facts.faces == 320 and not merges
     loaded = load_mesh(_robot(tmp_path), "m.stl", scale)
-    assert facts.bounds.tolist() == loaded.bounds.tolist()
+    assert [list(corner) for corner in facts.bounds] == loaded.bounds.tolist()
     assert facts.is_watertight and len(merges) == 1
     assert facts.vertices.tolist() == loaded.vertices.tolist()
 

@@ -352,7 +352,8 @@ def _merge_keys(vertices):
 
 
 def merged_bounds(vertices, unmerged):
-    """``bounds(*merged(unmerged, faces))``, with every vertex moved as ``vertices`` moves it
+    """``bounds(*merged(unmerged, faces))`` as tuples of floats (min corner, max corner), with
+    every vertex moved as ``vertices`` moves it
     (``vertices`` is ``unmerged`` scaled, or itself), without merging: a mesh's least and
     greatest coordinate are a merged vertex's when the first vertex to have it is the first
     of those that merge with it (the one merging keeps). Every vertex must be used by a face.
@@ -389,9 +390,9 @@ def merged_bounds(vertices, unmerged):
                 plain[row] - plain[ends[0]] <= plain[ends[1]] - plain[row]
             if row and _merges_earlier(unmerged, plain, row, least, scratch):
                 return None
-        lows.append(vertices[low, axis])
-        highs.append(vertices[high, axis])
-    return np.array(lows), np.array(highs)
+        lows.append(float(column[low]))
+        highs.append(float(column[high]))
+    return tuple(lows), tuple(highs)
 
 
 KEY_RANGE = 2.0 ** 62 / 10 ** MERGE_DIGITS  # [m]: beyond, merge keys overflow int64

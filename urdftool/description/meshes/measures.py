@@ -136,8 +136,9 @@ class _Arrays:
             refuse_too_far(uri, self._read[0])
 
     def bounds(self, scale: tuple[float, float, float]):
-        """The (2, 3) bounds of the merged vertices scaled by ``scale``, found without merging
-        them; None when that cannot be decided so (see :func:`.mesh_arrays.merged_bounds`)."""
+        """The bounds (min corner, max corner: tuples of floats) of the merged vertices scaled
+        by ``scale``, found without merging them; None when that cannot be decided so (see
+        :func:`.mesh_arrays.merged_bounds`)."""
         if self._read is None:
             return None
         import numpy as np
@@ -150,8 +151,7 @@ class _Arrays:
                     moved, _ = mesh_arrays.scaled(moved, faces, factors)
         if not np.isfinite(moved).all():
             return None
-        found = mesh_arrays.merged_bounds(moved, vertices)
-        return None if found is None else np.array(found)
+        return mesh_arrays.merged_bounds(moved, vertices)
 
 
 class MeshFacts:
@@ -159,7 +159,9 @@ class MeshFacts:
     solids read it as they would read the ``trimesh.Trimesh`` that :func:`load_mesh` gives
     (same numbers: :mod:`.mesh_arrays` measures as trimesh does).
 
-    faces: the triangle count; bounds: (2, 3) min and max corner; extents; is_watertight;
+    faces: the triangle count; bounds: min and max corner and extents, as tuples of floats
+    (trimesh's are arrays: six numbers cost less as Python's, and their readers take both);
+    is_watertight;
     metadata: :data:`NOT_WELL_FORMED` for a repaired COLLADA file; vertices (merged by
     position), is_watertight, mass_properties (density 1, of the mesh as it is),
     convex_hull (its measures, as trimesh's hull has them; qhull's RuntimeError for a flat
@@ -170,9 +172,8 @@ class MeshFacts:
 
     def __init__(self, vertices, faces, metadata: dict, watertight: bool | None = None,
                  properties: dict | None = None):
-        import numpy as np
-
-        self._start(len(faces), np.array(mesh_arrays.bounds(vertices, faces)), metadata,
+        low, high = mesh_arrays.bounds(vertices, faces)
+        self._start(len(faces), (tuple(low.tolist()), tuple(high.tolist())), metadata,
                     vertices.nbytes + faces.nbytes)
         self._vertices, self._faces, self._watertight = vertices, faces, watertight
         self._properties = properties
@@ -192,10 +193,11 @@ class MeshFacts:
 
     def _start(self, triangles: int, bounds, metadata: dict, nbytes: int) -> None:
         self.faces, self.bounds, self.metadata, self.nbytes = triangles, bounds, metadata, nbytes
-        self.extents = self.bounds[1] - self.bounds[0]
+        low, high = bounds
+        self.extents = (high[0] - low[0], high[1] - low[1], high[2] - low[2])
         # every coordinate within 1e150 of the origin: turned and moved by what is not
         # larger, none overflows
-        self.moderate = bool((abs(self.bounds) < 1e150).all())
+        self.moderate = all(abs(v) < 1e150 for v in low + high)
         self._vertices = self._faces = self._watertight = self._merge = None
         self._properties, self._hull, self._extreme = None, None, None
         self._inner = self._inner_volume = self._inner_tetrahedron = self._corners = None
