@@ -145,7 +145,7 @@ def installed(name: str, folder: Path, path) -> Located:
     it exists; else the source an install rule of the package's build puts at that place of
     ``share/NAME`` (inside the repository, no link leading out); else not found, with the
     doubt when the rules for that place could not be read."""
-    named = Path(path)
+    named = path if isinstance(path, Path) else Path(path)
     if kind_of(named):
         return Located(named, folder)
     tail = Path(os.path.relpath(os.path.abspath(named), folder)).as_posix()

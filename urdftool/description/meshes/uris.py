@@ -316,7 +316,8 @@ def _in_package(uri: str, package: str, folder: str, tail: str) -> Path | MeshPr
     an install rule of its build takes it from), checked (:func:`_checked`); else the
     MeshProblem. Once per run: every robot that names the mesh in a package found in the same
     folder gets the same answer."""
-    located = installed(package, Path(folder), Path(folder) / tail)
+    at = Path(folder)
+    located = installed(package, at, at / tail)
     return _doubted(uri, _checked(uri, os.fspath(located.path), os.fspath(located.within),
                                   package, bool(located.doubt)),
                     located, os.fspath(located.within))
@@ -367,20 +368,21 @@ def _checked(uri: str, named: str, base: str, package: str | None,
     robot's folder ``base``) and is a file with a mesh extension; else the MeshProblem.
     ``built``: the package's build may put a file there (a file missing is "not found in the
     source tree"). Once per run: robots of one package name the same meshes."""
-    path = _real(Path(named))
+    path = real_path(named)  # (a string throughout, the Path made once, of the file found)
     if package is not None:
-        folder = _real(Path(base))
+        folder = real_path(base)
         if not inside(path, folder):
             return MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' "
                                           f"({folder}); name a file inside the package")
     else:
         # file:// and relative paths stay where the loader's files stay
-        root = _real(containment_root(Path(base)))
+        contained = os.fspath(containment_root(Path(base)))
+        root = real_path(contained)
         if not inside(path, root):
             # as written, never where links lead: that would name what exists outside
             written = os.path.normpath(os.path.join(base, named))
             how = (f"is a symbolic link (or lies in one) leading outside {root}"
-                   if written.startswith(str(containment_root(Path(base))) + os.sep)
+                   if written.startswith(contained + os.sep)
                    else f"is an absolute path, outside {root}"
                    if uri.removeprefix("file://") == written  # said once, not twice
                    else f"resolves to {written}, outside {root}")
@@ -397,17 +399,27 @@ def _checked(uri: str, named: str, base: str, package: str | None,
                 f"repository: {_rooted_by_mistake(named, base) or _as_package_uri(written)}"))
     if kind_of(path) != "file":  # never raises (a name too long for the file system: '')
         # the place looked at, unless the URI already says it (a $(find) expanded by xacro)
-        looked = "" if uri.removeprefix("file://") == str(path) else f" (looked at {path})"
+        looked = "" if uri.removeprefix("file://") == path else f" (looked at {path})"
         why = no_file_there(path)
         if why.startswith("is "):  # something is there, not a mesh file: never opened
             return MeshProblem("corrupt", f"mesh '{uri}' {why}, not a file{looked}: not opened")
         found = ("not found in the source tree" if built else "not found") \
             if why == "does not exist" else why
         return MeshProblem("missing", f"mesh '{uri}' {found}{looked}")  # (advice: _doubted)
-    if path.suffix.lower() not in MESH_EXTENSIONS:
-        return MeshProblem("format", (f"mesh '{uri}' has extension '{path.suffix}', not one of "
+    suffix = _suffix(path)
+    if suffix.lower() not in MESH_EXTENSIONS:
+        return MeshProblem("format", (f"mesh '{uri}' has extension '{suffix}', not one of "
                                       f"{', '.join(MESH_EXTENSIONS)}; not opened"))
-    return path
+    return Path(path)
+
+
+def _suffix(path: str) -> str:
+    """``Path(path).suffix`` of a real path (absolute, normalised: its last part is its name),
+    without making the Path: the name's last dot and what follows, '' for a name that starts
+    with its only dot (``.stl``) or ends with it."""
+    name = path[path.rfind("/") + 1:]
+    dot = name.rfind(".")
+    return name[dot:] if 0 < dot < len(name) - 1 else ""
 
 
 def _as_package_uri(written: str) -> str:
