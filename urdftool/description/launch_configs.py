@@ -957,7 +957,7 @@ def _leads_outside(path: Path | None, resolved: Resolved, scope: Scope, action,
         _, package, rest = text.split("\0")
         folder = scope.packages.get(package)
         named = folder / rest.strip("/") if folder is not None and rest.strip("/") else None
-        if named is None or not os.path.lexists(named):
+        if named is None or not kind_of(named, follow=False):
             return
     elif "\0" in text:
         return
