@@ -35,6 +35,21 @@ def test_no_file_holds_a_merge_conflict_left_unresolved():
     assert left == []
 
 
+def test_no_two_test_modules_share_a_name():
+    """pytest imports a test module by its file's name (the folders hold no __init__.py): a
+    second tests/*/test_tree.py is an error at collection of the whole suite, which a run of
+    its own folder never shows (commands24's tests/kinematics/test_tree.py beside
+    tests/report/test_tree.py, found by the merged suite)."""
+    seen: dict[str, list[str]] = {}
+    for path in _files():
+        relative = path.relative_to(ROOT).as_posix()
+        if relative.startswith(("tests/cases/", "tests/fuzz/corpus")) or path.suffix != ".py":
+            continue
+        if relative.startswith("tests/") and path.name.startswith("test_"):
+            seen.setdefault(path.name, []).append(relative)
+    assert {name: where for name, where in seen.items() if len(where) > 1} == {}
+
+
 def test_no_code_searches_a_list_among_the_items_before_each():
     """``name in names[:index]`` in a loop is quadratic in what an input counts (a q-file's
     100,000 columns took fk's 60 s; a controller's 40,000 joints 13 s of a check): a set of
