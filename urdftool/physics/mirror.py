@@ -204,7 +204,8 @@ def fit(points, tolerance=(0.002, 0.01)) -> Plane | None:
     best, score = None, -1
     points = [(a, b) for a, b in points]
     near, relative = tolerance
-    for candidate in candidates:
+    for candidate in dict.fromkeys(candidates):  # (a plane met again gets the same votes, and
+        # the earlier one wins a tie: each counted once; symmetric pairs give the same bits)
         # Plane.reflect inlined (the same operations, the same bits): a pair's vote for each
         # candidate is the inner loop of a robot's symmetry rules
         (nx, ny, nz), offset = candidate.normal, candidate.offset
