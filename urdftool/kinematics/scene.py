@@ -249,10 +249,10 @@ def _yourdfpy(robot, collision: bool):
 
 def _unit_axes(robot, model) -> None:
     """Each moving joint's axis in yourdfpy's ``model`` as
-    :func:`urdftool.kinematics.fk.unit_axis` reads it (the one reading of an axis): yourdfpy rotated about the axis as written, so a
-    child on ``0 0 0`` or ``1e-320 0 0`` was posed at NaN (drawn nowhere, numpy's warnings) and
-    one on ``1e308 1e308 1e308`` overflowed. SceneError at the joint for an axis with no
-    direction."""
+    :func:`urdftool.kinematics.fk.unit_axis` reads it (the one reading of an axis): yourdfpy
+    rotated about the axis as written, so a child on ``0 0 0`` or ``1e-320 0 0`` was posed at
+    NaN (drawn nowhere, numpy's warnings) and one on ``1e308 1e308 1e308`` overflowed.
+    SceneError at the joint for an axis with no direction."""
     from urdftool.errors import FKError
     from urdftool.kinematics.fk import unit_axis
 
