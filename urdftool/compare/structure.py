@@ -217,10 +217,12 @@ def turn(key: str, old, new) -> float | None:
             return None
         old, new = ([x / length(v) for x in v] for v in (old, new))  # (no overflow: 1e200)
         return math.atan2(length(mat3.cross(old, new)), mat3.dot(old, new))
-    # R_old^T R_new: its angle from the skew part (sin) and the trace (cos), exact near 0
-    (a, b, c), (d, e, f), (g, h, i) = mat3.multiply(mat3.transpose(mat3.rpy_matrix(old)),
-                                                    mat3.rpy_matrix(new))
-    return math.atan2(length((h - f, c - g, d - b)) / 2.0, (a + e + i - 1.0) / 2.0)
+    import numpy as np
+
+    from urdftool.kinematics.transforms import rotation_angle_between
+
+    return float(rotation_angle_between(np.array(mat3.rpy_matrix(old)),
+                                        np.array(mat3.rpy_matrix(new))))
 
 
 INERTIA_FIELDS = ("inertial.origin.rpy", "inertial.ixx", "inertial.ixy", "inertial.ixz",
