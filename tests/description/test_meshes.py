@@ -3,6 +3,7 @@ tests/integration/test_corpus_meshes.py)."""
 
 from __future__ import annotations
 
+import os
 import struct
 
 import pytest
@@ -751,3 +752,15 @@ def test_a_binary_stl_named_dae_names_pycolladas_error_once(tmp_path):
     with pytest.raises(MeshProblem) as error:
         load_mesh(_robot(tmp_path, "m.dae"), "m.dae")
     assert "does not load: DaeMalformedError: XML Parsing Error" in str(error.value)
+
+
+@pytest.mark.parametrize("path", ["/a/b.stl", "/a.b/c", "/a/.stl", "/a/b.", "/a/b.tar.DAE",
+                                  "/a/b", "/a.v1/b/c.obj"])
+def test_a_real_paths_extension_is_the_one_pathlib_gives(path):
+    """uris._suffix reads a real path's extension from the string (no Path made for each
+    candidate): the same as ``Path.suffix``, a folder's dot never taken."""
+    from pathlib import Path
+
+    from urdftool.description.meshes.uris import _suffix
+
+    assert _suffix(os.path.normpath(path)) == Path(path).suffix

@@ -417,7 +417,7 @@ def _suffix(path: str) -> str:
     """``Path(path).suffix`` of a real path (absolute, normalised: its last part is its name),
     without making the Path: the name's last dot and what follows, '' for a name that starts
     with its only dot (``.stl``) or ends with it."""
-    name = path[path.rfind("/") + 1:]
+    name = os.path.basename(path)  # (os.sep's last part: a Windows path's too)
     dot = name.rfind(".")
     return name[dot:] if 0 < dot < len(name) - 1 else ""
 
