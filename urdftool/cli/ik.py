@@ -59,7 +59,8 @@ def ik(
     iterations: int = typer.Option(100, "--iterations", metavar="N",
                                    help="Iterations per starting point."),
     method: str = typer.Option("auto", "--method",
-                               help="auto (closed form for planar 2-3 joint limbs, else "
+                               help="auto (closed form for planar 2-3 joint limbs and 6-joint "
+                                    "arms with a spherical wrist, else "
                                     "numeric), numeric or closed-form."),
     output_format: str = typer.Option("text", "--format", "-f", help="text, json or csv."),
     arg: list[str] = XacroArgOption,
