@@ -144,6 +144,10 @@ SHAPES = {
                          "stricter: urdfdom refuses a joint without a name attribute but "
                          "takes name=\"\"; a joint no /joint_states, controller or "
                          "transmission can name"),
+    "empty robot name": ('<robot name=""><link name="r"/></robot>', "accepts", {"U011"},
+                         "stricter: urdfdom refuses a robot without a name attribute but takes "
+                         "name=\"\" (check_urdf prints 'robot name is: '); the name is what "
+                         "an SRDF and a simulator's model are matched by"),
     "empty link name, the only link": ('<link name=""/>', "accepts", {"U103"},
                                        "stricter: urdfdom takes name=\"\" (its root is "
                                        "''); no joint can attach to it"),
@@ -184,7 +188,7 @@ def test_parity_on_shapes_check_urdf_handles_badly(shape, tmp_path):
 
     body, expected, codes, judged = SHAPES[shape]
     path = tmp_path / "shape.urdf"
-    path.write_text(f'<robot name="r">{body}</robot>')
+    path.write_text(body if body.startswith("<robot") else f'<robot name="r">{body}</robot>')
     verdict = check_urdf(path, timeout=2.0)
     assert outcome(verdict) == expected, verdict.stdout + verdict.stderr
     result = load_and_check(str(path), CheckOptions())

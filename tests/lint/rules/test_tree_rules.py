@@ -115,3 +115,18 @@ def test_a_loop_at_the_end_of_a_long_chain_is_found_without_recursion(tmp_path):
     [(joint, message)] = tree.kinematic_cycle(robot)
     assert message.startswith("joints form a cycle through links l10 -> l11 -> ")
     assert message.endswith("-> l4999 -> l10")
+
+
+def test_an_empty_name_is_said_as_empty_not_as_missing(tmp_path):
+    """``name=""`` and ``link=""`` were said as attributes missing; urdfdom reads an absent name
+    and an empty one differently (it refuses the first, takes the second for a joint)."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="r"/><link name=""/><link/>'
+                    '<joint name="" type="fixed"><parent link="r"/><child link=""/></joint>'
+                    '<joint name="j" type="fixed"><parent link="r"/><child/></joint></robot>')
+    robot = load(str(path))
+    assert [message for _, message in tree.missing_name(robot)] == [
+        '<link> has an empty name (name="")', "<link> has no name attribute",
+        '<joint> has an empty name (name="")']
+    assert [message for _, message in tree.joint_missing_endpoint(robot)] == [
+        """joint '': <child> names no link (link="")""", "joint 'j': <child> has no link attribute"]

@@ -85,7 +85,8 @@ def missing_name(robot):
     for tag in ("link", "joint"):
         for element in robot.children(tag):
             if not names[element]:
-                yield element, f"<{tag}> has no name attribute"
+                yield element, (f"<{tag}> has no name attribute" if element.get("name") is None
+                                else f"<{tag}> has an empty name (name=\"\")")
 
 
 @rule("U104", "joint-missing-endpoint", Severity.ERROR)
@@ -104,7 +105,10 @@ def joint_missing_endpoint(robot):
                               + (f": {dropped} (--arg NAME=VALUE checks another build)"
                                  if dropped else ""))
             elif not link:
-                yield element, f"joint '{joint.get('name')}': <{side}> has no link attribute"
+                yield element, (f"joint '{joint.get('name')}': <{side}> has no link attribute"
+                                if element.get("link") is None else
+                                f"joint '{joint.get('name')}': <{side}> names no link "
+                                "(link=\"\")")
 
 
 @rule("U105", "unknown-link", Severity.ERROR)
