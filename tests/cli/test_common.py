@@ -181,3 +181,28 @@ def test_a_command_that_sets_nothing_reports_its_errors_in_its_format(tmp_path, 
         result = CliRunner().invoke(app, [str(path), "--format", given])
         assert result.exit_code == 1
         assert ('"error": "cannot compute"' in result.stdout) is stdout, result.stdout
+
+
+def test_a_xacro_argument_no_file_names_is_said_to_change_nothing(tmp_path, run_cli):
+    """``--arg lenght=2`` for ``length``: xacro takes it without a word and the robot is
+    built from the defaults; the commands said nothing of it either."""
+    path = tmp_path / "arm.urdf.xacro"
+    path.write_text(ARM.replace('<robot name="arm">', '<robot name="arm" xmlns:xacro='
+                                '"http://www.ros.org/wiki/xacro"><xacro:arg name="length" '
+                                'default="0.3"/>').replace('length="0.3"',
+                                                           'length="$(arg length)"'))
+    result = run_cli("fk", str(path), "--arg", "lenght=2", "length:=0.5")
+    assert result.exit_code == 0, result.output
+    assert "warning: xacro argument 'lenght' (lenght:=2) is named by no file of the robot " \
+        "(no <xacro:arg name=\"lenght\">, no $(arg lenght)): it changes nothing; did you " \
+        "mean 'length'?" in result.stderr
+    assert "'length'" not in result.stderr.replace("did you mean 'length'", "")
+    result = run_cli("fk", str(path), "--arg", "length=0.5")
+    assert result.exit_code == 0 and "warning" not in result.stderr, result.output
+
+
+def test_a_xacro_argument_for_a_urdf_is_said_to_change_nothing(arm, run_cli):
+    result = run_cli("fk", str(arm), "--arg", "x=1")
+    assert result.exit_code == 0, result.output
+    assert "warning: xacro argument 'x' given, but " in result.stderr
+    assert "is read as URDF, not expanded by xacro: it changes nothing" in result.stderr

@@ -203,11 +203,33 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     except UsageError as error:
         fail_usage(error)
     robot = load_robot(paths[0], args, packages, **load_options)
+    warn_unnamed_arguments(robot, args)
     if not robot.links and command != "xacro":  # a macro library expands to no link: xacro's
         _refuse_linkless(robot)
     if command in POSING:
         refuse_refused(robot, posing=True)
     return robot
+
+
+def warn_unnamed_arguments(robot, args: dict[str, str]) -> None:
+    """A warning for each xacro argument given (``--arg NAME=VALUE``, ``NAME:=VALUE``) that
+    no file of the robot names: xacro takes it and it changes nothing (a misspelt name
+    computed the defaults without a word)."""
+    from urdftool.description.xacro_text import unnamed_arguments
+    from urdftool.errors import listed
+
+    if not args:
+        return
+    if not robot.from_xacro:
+        warn([f"xacro argument{'s' * (len(args) > 1)} {listed(args)} given, but "
+              f"{robot.display} is read as URDF, not expanded by xacro: "
+              f"{'they change' if len(args) > 1 else 'it changes'} nothing"])
+        return
+    for name, close in unnamed_arguments(robot.sources, args).items():
+        hint = f"; did you mean {listed(close)}?" if close else ""
+        warn([f"xacro argument '{name}' ({name}:={args[name]}) is named by no file of the "
+              f"robot (no <xacro:arg name=\"{name}\">, no $(arg {name})): it changes "
+              f"nothing{hint}"])
 
 
 # the commands that pose the robot (a model of its joints and links: Pinocchio's, yourdfpy's,

@@ -56,6 +56,12 @@ class Chain:
         """Which of ``x`` are continuous joints (wrapped to (-pi, pi])."""
         return np.array([v.kind == "continuous" for v in self.variables], dtype=bool)
 
+    @property
+    def held(self) -> list[str]:
+        """The limb's variables of no range (``lower = upper``: double_pendulum_simple's
+        ``<limit lower="0" upper="0">``): they stay at that value in every pose."""
+        return [v.name for v in self.variables if not v.upper - v.lower > 0]
+
     def x_of(self, row: np.ndarray) -> np.ndarray:
         """The limb's coordinates in a full variable row."""
         return np.asarray(row, dtype=float)[self.columns].copy()

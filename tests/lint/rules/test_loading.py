@@ -93,3 +93,13 @@ def test_a_nameless_fragment_calling_a_macro_its_includer_defines_is_a_warning(t
     assert "its <robot> has no name" in found[0].message
     named = _u005(tmp_path / "named", ' name="rov"')
     assert [f.severity.value for f in named] == ["error"]
+
+
+def test_an_empty_robot_name_is_said_as_empty(tmp_path):
+    from urdftool.description.load import load
+    from urdftool.lint.rules.loading import robot_name_missing
+
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name=""><link name="a"/></robot>')
+    [(_, message)] = robot_name_missing(load(str(path)))
+    assert message == '<robot> has an empty name (name=""); give it one'

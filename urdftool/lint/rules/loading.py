@@ -426,7 +426,9 @@ def robot_name_missing(robot):
     Good: ``<robot name="my_robot">``
     """
     if not robot.root.get("name"):
-        message = "<robot> has no name attribute; add name=\"...\""
+        message = ("<robot> has no name attribute; add name=\"...\""
+                   if robot.root.get("name") is None else
+                   "<robot> has an empty name (name=\"\"); give it one")
         if _built_by_nothing_here(robot):
             message = Conditional(
                 "<robot> has no name attribute: urdfdom refuses it if it is loaded alone (add "
