@@ -223,7 +223,7 @@ def warn_unnamed_arguments(robot, args: dict[str, str]) -> None:
     """A warning for each xacro argument given (``--arg NAME=VALUE``, ``NAME:=VALUE``) that
     no file of the robot names: xacro takes it and it changes nothing (a misspelt name
     computed the defaults without a word)."""
-    from urdftool.description.xacro_text import unnamed_arguments
+    from urdftool.description.xacro_text import argument_warnings
     from urdftool.errors import listed
 
     if not args:
@@ -233,11 +233,7 @@ def warn_unnamed_arguments(robot, args: dict[str, str]) -> None:
               f"{robot.display} is read as URDF, not expanded by xacro: "
               f"{'they change' if len(args) > 1 else 'it changes'} nothing"])
         return
-    for name, close in unnamed_arguments(robot.sources, args).items():
-        hint = f"; did you mean {listed(close)}?" if close else ""
-        warn([f"xacro argument '{name}' ({name}:={args[name]}) is named by no file of the "
-              f"robot (no <xacro:arg name=\"{name}\">, no $(arg {name})): it changes "
-              f"nothing{hint}"])
+    warn(argument_warnings(robot.sources, args, "the robot"))
 
 
 # the commands that pose the robot (a model of its joints and links: Pinocchio's, yourdfpy's,
