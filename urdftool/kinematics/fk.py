@@ -335,23 +335,19 @@ def placed_within(robot, masses: bool = False) -> None:
     """FKError for the first joint whose ``<origin>`` is no pose (:func:`_placement`): the one
     check of joint origins, which :class:`KinematicModel` makes as it builds (fk, ik,
     workspace, collisions, diff) and the models built otherwise ask (dynamics: Pinocchio from
-    the text; render: yourdfpy); with ``masses`` (dynamics), each link's centre of mass too
-    (an ``<inertial><origin>`` at 1e200 gave torques of NaN and "M(q) is singular"); once per
-    robot."""
-    from urdftool.description.values import parse_numbers
+    the text; render: yourdfpy); with ``masses`` (dynamics), each link's inertial too, within
+    the bounds of :func:`urdftool.physics.mass.problem` (an ``<inertial><origin>`` at 1e200
+    gave torques of NaN and "M(q) is singular", a mass of 1e308 "P = inf J"); once per robot."""
+    from urdftool.physics.mass import problem as mass_problem
 
     def check() -> bool:
         for element in robot.joints.values():
             _placement(element)
         for name, link in robot.links.items() if masses else ():
-            origin = link.find("inertial/origin")
-            found, _ = parse_numbers(origin.get("xyz"), 3) if origin is not None else (None, "")
-            if found and not max(map(abs, found)) < MAX_COORDINATE:  # (NaN: urdfdom refuses)
-                from urdftool.numbers import number
-
-                raise FKError(f"link '{name}': <inertial><origin> xyz {_numbers(found)} is past "
-                              f"the {number(MAX_COORDINATE)} m urdftool places a centre of mass "
-                              "within", origin)
+            problem = mass_problem(link)  # (not finite, or not a number: urdfdom refuses)
+            if problem:
+                where = "inertial/origin" if problem.startswith("<origin>") else "inertial"
+                raise FKError(f"link '{name}': <inertial>{problem}", link.find(where))
         return True
 
     robot.memo((placed_within, masses), check)

@@ -271,6 +271,24 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
         raise OverLimit("M(q) and C(q, v) of the robot's joint velocities", m.nv, max_rows,
                         "rows")
     q = model.configuration(q_values)
+    with np.errstate(all="ignore"):  # (what overflows is refused below, by its name)
+        result = _computed(model, q, q_values, v_values, a_values)
+    overflowed = _overflowed(result)
+    if overflowed:
+        from urdftool.errors import DynamicsError
+
+        raise DynamicsError(f"{overflowed} is past what a float holds (the joint velocities or "
+                            "accelerations given, times the robot's masses and lengths): "
+                            "nothing to print; give smaller values")
+    return result
+
+
+def _computed(model: Model, q: np.ndarray, q_values: dict, v_values: dict | None,
+              a_values: dict | None) -> State:
+    """:func:`state`'s quantities, as computed."""
+    import pinocchio as pin
+
+    m, d = model.model, model.data
     mass_matrix = pin.crba(m, d, q)
     mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T
     gravity = pin.computeGeneralizedGravity(m, d, q).copy()
@@ -290,6 +308,24 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
         result.warnings.extend(over_limits(model, v, result.total))
     result.potential = float(result.mass * -m.gravity.linear @ result.com)
     return result
+
+
+def _overflowed(result: State) -> str | None:
+    """The first of a state's derived quantities that is not finite, by its name, or None:
+    velocities and accelerations are bounded by ``numbers.SQUARABLE`` and the inertials by
+    :mod:`urdftool.physics.mass`'s bounds, each alone, but a velocity of 1e150 on a link of
+    1e29 kg gave "K = inf J" (and JSON's null, silently)."""
+    for name, value in (("the total mass", result.mass), ("the centre of mass", result.com),
+                        ("M(q)", result.M), ("G(q)", result.G), ("C(q, v)", result.C),
+                        ("tau", result.tau), ("the damping torque", result.damping),
+                        ("the friction torque", result.friction),
+                        ("the kinetic energy K", result.kinetic),
+                        ("the potential energy P", result.potential),
+                        ("L = K - P", result.lagrangian),
+                        ("tau with damping and friction", result.total)):
+        if value is not None and not np.all(np.isfinite(value)):
+            return name
+    return None
 
 
 def over_limits(model: Model, v: np.ndarray, total: np.ndarray) -> list[str]:
