@@ -158,7 +158,7 @@ class KinematicModel:
                               + ("is reached twice (a cycle?)" if child in seen
                                  else "does not exist"), element)
             seen.add(child)
-            placement = _placement(element)
+            placement = joint_placement(element)
             if above is not identity or _negative_zero(placement):
                 placement = _compose(above, placement)
             kind = element.get("type")
@@ -332,7 +332,7 @@ NQ = {"revolute": 1, "prismatic": 1, "continuous": 2, "floating": 7, "planar": 4
 
 
 def placed_within(robot, masses: bool = False) -> None:
-    """FKError for the first joint whose ``<origin>`` is no pose (:func:`_placement`): the one
+    """FKError for the first joint whose ``<origin>`` is no pose (:func:`joint_placement`): the one
     check of joint origins, which :class:`KinematicModel` makes as it builds (fk, ik,
     workspace, collisions, diff) and the models built otherwise ask (dynamics: Pinocchio from
     the text; render: yourdfpy); with ``masses`` (dynamics), each link's inertial too, within
@@ -342,7 +342,7 @@ def placed_within(robot, masses: bool = False) -> None:
 
     def check() -> bool:
         for element in robot.joints.values():
-            _placement(element)
+            joint_placement(element)
         for name, link in robot.links.items() if masses else ():
             problem = mass_problem(link)  # (not finite, or not a number: urdfdom refuses)
             if problem:
@@ -353,7 +353,7 @@ def placed_within(robot, masses: bool = False) -> None:
     robot.memo((placed_within, masses), check)
 
 
-def _placement(element) -> np.ndarray:
+def joint_placement(element) -> np.ndarray:
     """The 4x4 transform of a joint's ``<origin>``, its rotation as Pinocchio has it (urdfdom's
     quaternion of the roll-pitch-yaw, then Eigen's matrix of the quaternion: the same numbers
     to the bit, so that an angle at +-pi reads as Pinocchio's did); FKError when a number in it

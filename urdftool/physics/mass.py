@@ -147,8 +147,8 @@ def problem(link) -> str | None:
                 "mass properties with")
     for attribute, term in zip(INERTIA_ATTRIBUTES, terms):
         if not abs(term[0]) <= MAX_MOMENT:
-            return (f"<inertia {attribute}> {number(term[0])} kg m^2 is past the {number(MAX_MOMENT)} "
-                    "kg m^2 urdftool computes mass properties with")
+            return (f"<inertia {attribute}> {number(term[0])} kg m^2 is past the "
+                    f"{number(MAX_MOMENT)} kg m^2 urdftool computes mass properties with")
     if not max(map(abs, xyz)) < MAX_COORDINATE:
         return (f"<origin> xyz '{' '.join(map(number, xyz))}' is past the "
                 f"{number(MAX_COORDINATE)} m urdftool places a centre of mass within")
