@@ -198,7 +198,7 @@ def _collada_root(data: bytes, recover: bool):
         return None
 
 
-def _gltf_header(path: Path, data: bytes) -> dict | None:
+def gltf_header(path: Path, data: bytes) -> dict | None:
     """The JSON of a ``.gltf``, or of a ``.glb``'s first chunk; None when there is none."""
     import json
 
@@ -214,28 +214,47 @@ def _gltf_header(path: Path, data: bytes) -> dict | None:
     return header if isinstance(header, dict) else None
 
 
+def _listed(value) -> list:
+    return value if isinstance(value, list) else []
+
+
+def _entry(items, index) -> dict:
+    ok = isinstance(index, int) and 0 <= index < len(_listed(items))
+    return items[index] if ok and isinstance(items[index], dict) else {}
+
+
+def gltf_scene_nodes(header: dict) -> list[tuple[int, dict]]:
+    """(index, node) of every node a glTF's scene reaches (its default scene, or the first), as
+    trimesh builds the scene from them: each once, whatever names it again."""
+    nodes = _listed(header.get("nodes"))
+    scene = _entry(header.get("scenes"), header.get("scene", 0))
+    seen, queue, found = set(), list(_listed(scene.get("nodes"))), []
+    while queue:
+        index = queue.pop()
+        if not isinstance(index, int) or index in seen or not 0 <= index < len(nodes):
+            continue
+        seen.add(index)
+        node = _entry(nodes, index)
+        found.append((index, node))
+        queue.extend(_listed(node.get("children")))
+    return found
+
+
 def _gltf_triangles(path: Path, data: bytes) -> int | None:
     """Triangles of a glTF scene as trimesh builds it: every node the scene reaches adds its
     mesh's triangles (accessor counts), so a file naming one mesh from a million nodes is
     counted before it is built."""
-    header = _gltf_header(path, data)
+    header = gltf_header(path, data)
     if header is None:
         return None
 
-    def listed(value) -> list:
-        return value if isinstance(value, list) else []
-
-    def entry(items, index) -> dict:
-        ok = isinstance(index, int) and 0 <= index < len(listed(items))
-        return items[index] if ok and isinstance(items[index], dict) else {}
-
     def count(index) -> int:
-        value = entry(header.get("accessors"), index).get("count")
+        value = _entry(header.get("accessors"), index).get("count")
         return value if isinstance(value, int) and value > 0 else 0
 
     def mesh_triangles(mesh: dict) -> int:
         total = 0
-        for primitive in listed(mesh.get("primitives")):
+        for primitive in _listed(mesh.get("primitives")):
             if not isinstance(primitive, dict):
                 continue
             mode = primitive.get("mode", 4)
@@ -245,19 +264,8 @@ def _gltf_triangles(path: Path, data: bytes) -> int | None:
             total += corners // 3 if mode == 4 else max(corners - 2, 0) if mode == 5 else 0
         return total
 
-    nodes = listed(header.get("nodes"))
-    scene = entry(header.get("scenes"), header.get("scene", 0))
-    seen, queue, total = set(), list(listed(scene.get("nodes"))), 0
-    while queue:
-        index = queue.pop()
-        if not isinstance(index, int) or index in seen or not 0 <= index < len(nodes):
-            continue
-        seen.add(index)
-        node = entry(nodes, index)
-        if "mesh" in node:
-            total += mesh_triangles(entry(header.get("meshes"), node["mesh"]))
-        queue.extend(listed(node.get("children")))
-    return total
+    return sum(mesh_triangles(_entry(header.get("meshes"), node["mesh"]))
+               for _, node in gltf_scene_nodes(header) if "mesh" in node)
 
 
 _PLY_SIZES = {"char": 1, "int8": 1, "uchar": 1, "uint8": 1, "short": 2, "int16": 2,
