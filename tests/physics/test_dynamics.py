@@ -649,3 +649,17 @@ def test_a_derived_quantity_past_the_float_range_is_refused_by_name(tmp_path, ru
         assert "inf" not in result.output.replace("info", "") and "RuntimeWarning" not in \
             result.output
     assert run_cli("dynamics", robot, "--v", "j=1").exit_code == 0
+
+
+def test_a_negative_total_mass_is_said_as_negative_not_as_no_mass(tmp_path, run_cli):
+    """attack25: a robot whose one link declares -1 kg was warned "no link has a mass (every
+    <inertial> is missing or of mass 0)"."""
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><joint name="j" type="revolute">'
+                     '<parent link="a"/><child link="b"/><origin xyz="0 0 1"/><axis xyz="0 1 0"/>'
+                     '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint><link name="b">'
+                     '<inertial><mass value="-1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" '
+                     'iyz="0" izz="1"/></inertial></link></robot>')
+    result = run_cli("dynamics", robot)
+    assert "the robot's mass is negative (-1 kg)" in result.output, result.output
+    assert "missing or of mass 0" not in result.output

@@ -357,6 +357,12 @@ def singular(model: Model, mass_matrix: np.ndarray, mass: float) -> list[str]:
     other (joints moving the same body the same way). M(q) is symmetric positive semidefinite:
     a joint's row is zero exactly when its diagonal entry is, and its rank is that of its
     eigenvalues above round-off."""
+    if mass < 0:  # (a link of mass -1 was "every <inertial> is missing or of mass 0")
+        from urdftool.numbers import number
+
+        return [f"the robot's mass is negative ({number(mass)} kg): a link declares a negative "
+                "mass, and M(q), G(q) and the energies mean nothing; 'urdftool check' says "
+                "which (U302)"]
     if mass <= 0:
         return ["no link has a mass (every <inertial> is missing or of mass 0): M(q) and every "
                 "gravity torque are zero; check the description (xacro arguments?) with "
