@@ -472,3 +472,23 @@ def test_a_chain_far_from_its_base_link_is_held_to_what_a_float_resolves_there(t
     table = dh.extract(load_text(tmp_path, FAR_CHAIN.format(x=x)), "w", "c")
     assert [round(row.a, 4) for row in table.joints] == [0.3, 0.0]
     assert table.residual <= max(1e-9, 16 * np.spacing(4e10 if x == "4e10" else float(x)))
+
+
+@pytest.mark.parametrize("edit, where, said", [
+    (lambda t: t["joints"][0].__setitem__("d", 1e300), "joints[0]", r"d: 1e\+300 is past"),
+    (lambda t: t["joints"][1].__setitem__("theta", -1e200), "joints[1]", r"theta: 1e\+200 is"),
+    (lambda t: t["base"][0].__setitem__(3, 1e308), "t.yaml", r"'base' translation: 1e\+308 is"),
+])
+def test_a_table_length_past_the_farthest_coordinate_is_refused(tmp_path, humanoid, edit, where,
+                                                                said):
+    """attack25: a D-H table file's d of 1e300 (or a base at 1e308) was read as given: fk
+    printed a pose at 1e+300 and --verify "worst position error inf m" with numpy's overflow
+    warning. A table's lengths and angles are bounded as joint origins and values are."""
+    table = dh.extract(humanoid, "body_link", "l_foot_link").as_dict()
+    edit(table)
+    path = tmp_path / "t.yaml"
+    path.write_text(yaml.safe_dump(table))
+    with pytest.raises(dh.DHError, match=said + r".* the 4\.612e\+10 (m|rad) urdftool places") \
+            as refused:
+        dh.load_table(str(path))
+    assert refused.value.where.endswith(where)

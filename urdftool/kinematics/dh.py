@@ -439,6 +439,8 @@ def load_table(path: str) -> DHTable:
             values = [math.nan]
         if not all(map(math.isfinite, values)):
             raise DHError("theta, d, a and alpha must all be finite numbers", where=where)
+        for key, value in zip(("theta", "d", "a", "alpha"), values):
+            _within([value], key, "m" if key in ("d", "a") else "rad", where)
         joints.append(DHJoint(row["joint"], kind, *values))
     return DHTable(convention, base, tool, joints, data.get("base_link"), data.get("tip_link"))
 
@@ -455,7 +457,20 @@ def _matrix(value, key: str, path: str) -> np.ndarray:
             np.linalg.det(rotation) > 0 and np.array_equal(matrix[3], [0, 0, 0, 1])):
         raise DHError(f"'{key}' must be a rigid transform (a rotation, a translation and the "
                       "row 0 0 0 1)", where=path)
+    _within(matrix[:3, 3], f"'{key}' translation", "m", path)
     return matrix
+
+
+def _within(values, what: str, unit: str, where: str) -> None:
+    """DHError for a table's length or angle past ``numbers.MAX_COORDINATE``, the bound of
+    every joint origin and value (fk.joint_placement, configuration.placeable): a ``d`` of
+    1e300 printed a pose at 1e+300 and ``--verify`` "worst position error inf m"."""
+    from urdftool.numbers import MAX_COORDINATE
+
+    far = max((abs(float(v)) for v in values), default=0.0)
+    if not far < MAX_COORDINATE:
+        raise DHError(f"{what}: {number(far)} is past the {number(MAX_COORDINATE)} {unit} "
+                      "urdftool places a link within", where=where)
 
 
 # -- FK from a table, and its check against the URDF -----------------------------------------------
