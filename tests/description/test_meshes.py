@@ -811,3 +811,17 @@ def test_a_gltf_node_matrix_that_is_not_finite_is_named_in_its_refusal(tmp_path)
                                           r".*\(glTF node 'n': its matrix holds a number that "
                                           r"is not finite\)"):
         load_mesh(_robot(tmp_path, "m.glb"), "m.glb")
+
+
+def test_a_gltf_scene_nested_deeper_than_a_collada_one_may_be_is_not_opened(tmp_path):
+    """attack25: a 60 KB GLB of 20,000 nodes each the child of the one before took trimesh 4.7 s
+    a load (it walks every node's parents), 13.6 s a check; 100,000 ran out the time budget.
+    A glTF scene is held to a COLLADA scene's bounds (256 deep, 100,000 nodes)."""
+    from gltf_nodes import glb_with_chain
+
+    glb_with_chain(tmp_path / "m.glb", 256)
+    assert len(load_mesh(_robot(tmp_path, "m.glb"), "m.glb").faces) == 12
+    glb_with_chain(tmp_path / "d.glb", 257)
+    with pytest.raises(MeshProblem, match=r"mesh 'd.glb': its scene has 257 nodes nested 257 "
+                                          r"deep, over 100000 nodes or 256 deep; not opened"):
+        load_mesh(_robot(tmp_path, "d.glb"), "d.glb")

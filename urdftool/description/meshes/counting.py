@@ -223,21 +223,42 @@ def _entry(items, index) -> dict:
     return items[index] if ok and isinstance(items[index], dict) else {}
 
 
-def gltf_scene_nodes(header: dict) -> list[tuple[int, dict]]:
-    """(index, node) of every node a glTF's scene reaches (its default scene, or the first), as
-    trimesh builds the scene from them: each once, whatever names it again."""
+def gltf_scene_nodes(header: dict) -> list[tuple[int, dict, int]]:
+    """(index, node, depth) of every node a glTF's scene reaches (its default scene, or the
+    first), as trimesh builds the scene from them: each once, whatever names it again; a root
+    node is at depth 1."""
     nodes = _listed(header.get("nodes"))
     scene = _entry(header.get("scenes"), header.get("scene", 0))
-    seen, queue, found = set(), list(_listed(scene.get("nodes"))), []
+    seen, found = set(), []
+    queue = [(index, 1) for index in _listed(scene.get("nodes"))]
     while queue:
-        index = queue.pop()
+        index, depth = queue.pop()
         if not isinstance(index, int) or index in seen or not 0 <= index < len(nodes):
             continue
         seen.add(index)
         node = _entry(nodes, index)
-        found.append((index, node))
-        queue.extend(_listed(node.get("children")))
+        found.append((index, node, depth))
+        queue.extend((child, depth + 1) for child in _listed(node.get("children")))
     return found
+
+
+def gltf_scene_problem(path: Path, data: bytes) -> str | None:
+    """Why trimesh is not to build a glTF's scene, or None: over
+    :data:`~urdftool.description.collada.MAX_NODE_VISITS` nodes, or nested over
+    :data:`~urdftool.description.collada.MAX_NODE_DEPTH` deep, the bounds of a COLLADA scene
+    (trimesh walks a node's parents for each node: a 60 KB GLB of 20,000 nodes each the child
+    of the one before took 4.7 s to load, three loads a check; 100,000 ran out the time)."""
+    from urdftool.description.collada import MAX_NODE_DEPTH, MAX_NODE_VISITS
+
+    header = gltf_header(path, data)
+    if header is None:
+        return None
+    found = gltf_scene_nodes(header)
+    deepest = max((depth for _, _, depth in found), default=0)
+    if len(found) > MAX_NODE_VISITS or deepest > MAX_NODE_DEPTH:
+        return (f"its scene has {len(found)} nodes nested {deepest} deep, over "
+                f"{MAX_NODE_VISITS} nodes or {MAX_NODE_DEPTH} deep")
+    return None
 
 
 def _gltf_triangles(path: Path, data: bytes) -> int | None:
@@ -265,7 +286,7 @@ def _gltf_triangles(path: Path, data: bytes) -> int | None:
         return total
 
     return sum(mesh_triangles(_entry(header.get("meshes"), node["mesh"]))
-               for _, node in gltf_scene_nodes(header) if "mesh" in node)
+               for _, node, _ in gltf_scene_nodes(header) if "mesh" in node)
 
 
 _PLY_SIZES = {"char": 1, "int8": 1, "uchar": 1, "uint8": 1, "short": 2, "int16": 2,

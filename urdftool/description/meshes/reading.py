@@ -119,6 +119,12 @@ def check_size(path: Path, uri: str, limits: MeshLimits, data: bytes,
                                      "pycollada expands it, Assimp (RViz) and Gazebo expand no "
                                      "entity and read those characters where numbers or "
                                      "names should be; write the text in place")
+    if path.suffix.lower() in (".glb", ".gltf"):
+        from urdftool.description.meshes.counting import gltf_scene_problem
+
+        deep = gltf_scene_problem(path, data)
+        if deep:
+            raise MeshProblem("too-large", f"mesh '{uri}': {deep}; not opened")
     triangles = triangle_count(path, data) if count else None
     if triangles is not None:
         refuse_too_many(uri, triangles, limits)
@@ -388,7 +394,7 @@ def gltf_node_transform(path: Path, data: bytes) -> str | None:
 
     header = gltf_header(path, data)
     problems = []
-    for index, node in gltf_scene_nodes(header) if header is not None else ():
+    for index, node, _ in gltf_scene_nodes(header) if header is not None else ():
         problem = _node_problem(node, np)
         if problem:
             name = node.get("name")

@@ -681,8 +681,7 @@ def empty_package_name(robot):
 
 @rule("U416", "mesh-not-well-formed", Severity.WARNING)
 def mesh_not_well_formed(robot):
-    """A COLLADA (``.dae``) mesh is not well-formed XML, a mesh has non-finite vertices, or a
-    glTF node's transform is none glTF allows.
+    """A mesh is not well-formed XML, has non-finite vertices, or an invalid glTF node transform.
 
     assimp, through which RViz, Gazebo and MoveIt load meshes, reads such XML anyway, and so
     does urdftool (as libxml2's recover mode repairs it, then checks the mesh); readers that
