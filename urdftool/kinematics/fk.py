@@ -331,26 +331,17 @@ class _Scratch:
 NQ = {"revolute": 1, "prismatic": 1, "continuous": 2, "floating": 7, "planar": 4}  # Pinocchio's
 
 
-def placed_within(robot, masses: bool = False) -> None:
-    """FKError for the first joint whose ``<origin>`` is no pose (:func:`joint_placement`): the one
-    check of joint origins, which :class:`KinematicModel` makes as it builds (fk, ik,
+def placed_within(robot) -> None:
+    """FKError for the first joint whose ``<origin>`` is no pose (:func:`joint_placement`): the
+    one check of joint origins, which :class:`KinematicModel` makes as it builds (fk, ik,
     workspace, collisions, diff) and the models built otherwise ask (dynamics: Pinocchio from
-    the text; render: yourdfpy); with ``masses`` (dynamics), each link's inertial too, within
-    the bounds of :func:`urdftool.physics.mass.problem` (an ``<inertial><origin>`` at 1e200
-    gave torques of NaN and "M(q) is singular", a mass of 1e308 "P = inf J"); once per robot."""
-    from urdftool.physics.mass import problem as mass_problem
-
+    the text, which checks the inertials itself; render: yourdfpy); once per robot."""
     def check() -> bool:
         for element in robot.joints.values():
             joint_placement(element)
-        for name, link in robot.links.items() if masses else ():
-            problem = mass_problem(link)  # (not finite, or not a number: urdfdom refuses)
-            if problem:
-                where = "inertial/origin" if problem.startswith("<origin>") else "inertial"
-                raise FKError(f"link '{name}': <inertial>{problem}", link.find(where))
         return True
 
-    robot.memo((placed_within, masses), check)
+    robot.memo(placed_within, check)
 
 
 def joint_placement(element) -> np.ndarray:

@@ -102,10 +102,11 @@ def build(robot, floating: bool = False) -> Model:
     from urdftool.kinematics.native import build_model
     from urdftool.kinematics.tree import own_free_base
 
-    try:  # (a joint's or a centre of mass's origin at 1e200: torques of NaN)
-        placed_within(robot, masses=True)
+    try:  # (a joint's origin at 1e200: torques of NaN)
+        placed_within(robot)
     except FKError as error:
         raise DynamicsError(str(error), error.element) from None
+    _inertials_within(robot)
     own = own_free_base(robot)
     root = (own or FLOATING_ROOT) if floating else None
     model = build_model(robot, *((pin.JointModelFreeFlyer(), root) if floating and not own
@@ -310,6 +311,19 @@ def _computed(model: Model, q: np.ndarray, q_values: dict, v_values: dict | None
     return result
 
 
+def _inertials_within(robot) -> None:
+    """DynamicsError for the first link whose inertial is past the bounds of
+    :func:`urdftool.physics.mass.problem` (an ``<inertial><origin>`` at 1e200 gave torques of
+    NaN and "M(q) is singular", a mass of 1e308 "P = inf J"); Pinocchio reads it as written."""
+    from urdftool.physics.mass import problem as mass_problem
+
+    for name, link in robot.links.items():
+        problem = mass_problem(link)  # (not finite, or not a number: urdfdom refuses)
+        if problem:
+            where = "inertial/origin" if problem.startswith("<origin>") else "inertial"
+            raise DynamicsError(f"link '{name}': <inertial>{problem}", link.find(where))
+
+
 def _overflowed(result: State) -> str | None:
     """The first of a state's derived quantities that is not finite, by its name, or None:
     velocities and accelerations are bounded by ``numbers.SQUARABLE`` and the inertials by
@@ -362,7 +376,7 @@ def singular(model: Model, mass_matrix: np.ndarray, mass: float) -> list[str]:
 
         return [f"the robot's mass is negative ({number(mass)} kg): a link declares a negative "
                 "mass, and M(q), G(q) and the energies mean nothing; 'urdftool check' says "
-                "which (U302)"]
+                "which"]
     if mass <= 0:
         return ["no link has a mass (every <inertial> is missing or of mass 0): M(q) and every "
                 "gravity torque are zero; check the description (xacro arguments?) with "

@@ -26,11 +26,13 @@ INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 # command and rule reads a link's inertial through _body). A centre of mass past
 # numbers.MAX_COORDINATE, a mass past MAX_MASS or a moment past MAX_MOMENT is no body: what is
 # derived from it (the parallel-axis m d^2, a sum of masses, m g z, a distance squared)
-# overflowed to inf or NaN in U307's message, `inertia`'s "com inf%", `dynamics`' "P = inf J".
+# overflowed to inf or NaN in the com-outside-geometry rule's message, `inertia`'s "com inf%",
+# `dynamics`' "P = inf J".
 # Within them, m d^2 between two centres of mass is at most 1e30 (2 x 4.6e10)^2 = 8.5e51, and a
 # million links' sums stay finite.
 MAX_MASS = 1e30  # [kg] half the Sun's
-MAX_MOMENT = MAX_MASS * MAX_COORDINATE ** 2  # [kg m^2] (2.1e51) the mass at the farthest place
+MAX_MOMENT = MAX_MASS * MAX_COORDINATE * MAX_COORDINATE  # [kg m^2] (2.1e51) that mass at the
+# farthest place
 
 
 class Body(namedtuple("Body", ("mass", "com", "inertia"))):

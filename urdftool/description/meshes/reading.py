@@ -438,7 +438,7 @@ def _node_problem(node: dict, np) -> str | None:
                     "apply it as it is, and so does urdftool")
     if rotation is not None and abs(float(np.sqrt(rotation @ rotation)) - 1) > _NODE_TOLERANCE:
         return (f"its rotation {_row(rotation)} is no unit quaternion (length "
-                f"{float(np.sqrt(rotation @ rotation)):.6g}): trimesh, and urdftool, normalise "
+                f"{_row([np.sqrt(rotation @ rotation)])}): trimesh, and urdftool, normalise "
                 "it; assimp (Gazebo, RViz) does not, and its matrix then scales and shears the "
                 "mesh")
     if scale is not None and not scale.all():
