@@ -57,7 +57,7 @@ def dynamics(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.errors import OverLimit
+    from urdftool.errors import OverLimit, UnknownLink
     from urdftool.kinematics.configuration import ConfigError, joint_values
     from urdftool.physics.dynamics import DynamicsError, build, gravity_variables, state
     from urdftool.physics.gravity_bound import worst_loads
@@ -76,9 +76,10 @@ def dynamics(
                                                      "(the gravity margins hold the base fixed; "
                                                      "a free base stands with --support)")])
     refuse_bad_outputs(plot, inputs=words)
-    try:
+    try:  # the question before the robot: a --support that names no link is the user's
+        UnknownLink.unless_among(support, robot.links)
         model = build(robot, floating=floating)
-    except DynamicsError as error:
+    except (DynamicsError, UnknownLink) as error:
         fail_at(robot, error)
     given = {name: joint_words(values, f"--{name}") for name, values in (("q", q), ("v", v),
                                                                          ("a", a))}

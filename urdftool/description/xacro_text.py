@@ -146,6 +146,23 @@ def unnamed_arguments(sources, args: dict[str, str]) -> dict[str, list[str]]:
     return {name: close_names(name, declared) for name in unnamed}
 
 
+def argument_warnings(sources, args: dict[str, str], whose: str) -> list[str]:
+    """A warning for each xacro argument of ``args`` (``--arg NAME=VALUE``, ``NAME:=VALUE``)
+    that no file of ``sources`` names (:func:`unnamed_arguments`), with the declared names
+    close to it: xacro takes it and it changes nothing (``--arg lenght=2`` computed the
+    defaults without a word). ``whose``: what the files are, as the warning says it ("the
+    robot", "the 3 robots checked"). The one wording of the robot commands and of check."""
+    from urdftool.errors import listed
+
+    warnings = []
+    for name, close in unnamed_arguments(sources, args).items():
+        hint = f"; did you mean {listed(close)}?" if close else ""
+        warnings.append(f"xacro argument '{name}' ({name}:={args[name]}) is named by no file "
+                        f"of {whose} (no <xacro:arg name=\"{name}\">, no $(arg {name})): it "
+                        f"changes nothing{hint}")
+    return warnings
+
+
 def resolved_spec(path: Path, spec: str, defaults: dict[str, str],
                    resolver: PackageResolver) -> Path | None:
     """The file ``spec``, written in ``path``, names, or None when it needs what is only
