@@ -306,3 +306,30 @@ def test_collisions_are_compared_only_for_pairs_a_change_can_move(tmp_path, monk
     compare(tmp_path, ARM.replace('<box size="0.05 0.05 0.25"/>', '<box size="0.05 0.05 0.3"/>'))
     assert asked == [{("base", "fore"), ("fore", "upper")}] * 2  # its shape, not its pose
 
+
+
+def test_a_mass_past_the_bounds_is_not_summed_and_no_percent_overflows(tmp_path):
+    """attack25: 1 kg -> 1e308 kg was "+inf %" (the change's and the total's); once physics.mass
+    gives no body past its bounds, the total read "3.5 -> 2.5 kg (-28.6 %)", the link left out
+    silently. The percent that is past a float is left out (the change in kg stays), and the
+    masses are not compared, saying which inertial."""
+    from urdftool.report import diff as report
+
+    result = compare(tmp_path, ARM.replace('<mass value="1.0"/>', '<mass value="1e308"/>'),
+                     collisions=False)
+    [change] = result.changes
+    assert (change.field, change.delta, change.percent) == ("inertial.mass", 1e308, None)
+    assert result.effects.mass_unknown == ("new: link 'upper': <inertial><mass> 1e+308 kg is "
+                                           "past the 1e+30 kg urdftool computes mass "
+                                           "properties with")
+    shown = report.text(result)
+    assert "inf" not in shown and "total mass and centre of mass not compared: new: link" in shown
+    assert report.as_json(result)["effects"]["mass_kg"] is None
+
+
+def test_a_large_percent_that_a_float_holds_is_kept(tmp_path):
+    result = compare(tmp_path, ARM.replace('<mass value="1.0"/>', '<mass value="1e29"/>'),
+                     collisions=False)
+    [change] = result.changes
+    assert change.percent == pytest.approx(1e31)
+    assert result.effects.mass_unknown is None and result.effects.new_mass == pytest.approx(1e29)

@@ -8,6 +8,7 @@ import struct
 
 import pytest
 
+from gltf_nodes import column_major as _columns, glb_with_node as _glb
 from urdftool.description.load import load
 from urdftool.description.meshes import MeshLimits, MeshProblem, load_mesh, resolve, triangle_count
 
@@ -431,8 +432,8 @@ def test_a_mesh_uri_is_checked_once_per_run_for_robots_of_one_folder(tmp_path, m
     (tmp_path / "m.stl").write_text("solid x\nendsolid x\n")
     robots = [_robot(tmp_path) for _ in range(3)]
     looked = []
-    real = meshes.uris.inside
-    monkeypatch.setattr(meshes.uris, "inside", lambda *a: looked.append(a) or real(*a))
+    real = meshes.uris.real_inside
+    monkeypatch.setattr(meshes.uris, "real_inside", lambda *a: looked.append(a) or real(*a))
     with one_run():
         assert {resolve(robot, "m.stl") for robot in robots} == {tmp_path / "m.stl"}
         with pytest.raises(MeshProblem) as first:
@@ -764,3 +765,63 @@ def test_a_real_paths_extension_is_the_one_pathlib_gives(path):
     from urdftool.description.meshes.uris import _suffix
 
     assert _suffix(os.path.normpath(path)) == Path(path).suffix
+
+
+
+I4 = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1))
+
+
+@pytest.mark.parametrize("node, said, extents", [
+    ({"matrix": _columns((2, 0, 0, 0), (0, 2, 0, 0), (0, 0, 2, 0), (0, 0, 0, 1))}, None, 0.2),
+    ({"matrix": _columns((-1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1))}, None, 0.1),
+    ({"scale": [1, 1, 3]}, None, 0.3),
+    ({"rotation": [0, 0, 0.7071068, 0.7071068]}, None, 0.1),
+    ({"matrix": _columns((1, 0.5, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1))},
+     "its matrix shears", 0.15),
+    ({"matrix": _columns((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0.5, 0, 0, 1))},
+     "bottom row is 0.5 0 0 1, not 0 0 0 1", 0.1),
+    ({"rotation": [0, 0, 0, 2]}, "is no unit quaternion (length 2): trimesh, and urdftool, "
+                                 "normalise it; assimp (Gazebo, RViz) does not", 0.1),
+    ({"scale": [1, 0, 1]}, "its scale 1 0 1 has a 0", 0.1),
+])
+def test_a_gltf_node_transform_glTF_does_not_allow_is_said_with_what_is_assumed(
+        tmp_path, node, said, extents):
+    """attack25: a GLB node's matrix that shears, projects, flattens, or a rotation that is no
+    unit quaternion, was applied (or ignored) silently; trimesh applies a matrix's affine part
+    (as assimp, Gazebo's and RViz's reader, does) and normalises a quaternion (which assimp
+    does not). urdftool measures as trimesh does and says so; translation, rotation and scale
+    (a mirror too), which every loader applies alike, are said nothing of."""
+    from urdftool.description.meshes import NODE_TRANSFORM
+
+    _glb(tmp_path / "m.glb", **node)
+    mesh = load_mesh(_robot(tmp_path, "m.glb"), "m.glb")
+    assert max(mesh.extents) == pytest.approx(extents)
+    found = mesh.metadata.get(NODE_TRANSFORM)
+    if said is None:
+        assert found is None, found
+    else:
+        assert found.startswith("glTF node 'n': ") and said in found, found
+
+
+def test_a_gltf_node_matrix_that_is_not_finite_is_named_in_its_refusal(tmp_path):
+    """attack25: "has a coordinate of nan, past the 4.612e+10": the refusal says the coordinate
+    is not finite, and which node's matrix made it so."""
+    _glb(tmp_path / "m.glb", matrix=_columns((float("nan"), 0, 0, 0), *I4[1:]))
+    with pytest.raises(MeshProblem, match=r"has a coordinate that is not finite, not within the "
+                                          r".*\(glTF node 'n': its matrix holds a number that "
+                                          r"is not finite\)"):
+        load_mesh(_robot(tmp_path, "m.glb"), "m.glb")
+
+
+def test_a_gltf_scene_nested_deeper_than_a_collada_one_may_be_is_not_opened(tmp_path):
+    """attack25: a 60 KB GLB of 20,000 nodes each the child of the one before took trimesh 4.7 s
+    a load (it walks every node's parents), 13.6 s a check; 100,000 ran out the time budget.
+    A glTF scene is held to a COLLADA scene's bounds (256 deep, 100,000 nodes)."""
+    from gltf_nodes import glb_with_chain
+
+    glb_with_chain(tmp_path / "m.glb", 256)
+    assert len(load_mesh(_robot(tmp_path, "m.glb"), "m.glb").faces) == 12
+    glb_with_chain(tmp_path / "d.glb", 257)
+    with pytest.raises(MeshProblem, match=r"mesh 'd.glb': its scene has 257 nodes nested 257 "
+                                          r"deep, over 100000 nodes or 256 deep; not opened"):
+        load_mesh(_robot(tmp_path, "d.glb"), "d.glb")

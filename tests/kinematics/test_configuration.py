@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from conftest import ROBOTS
 from urdftool.kinematics import configuration as config
 from urdftool.description.load import load
 
@@ -161,3 +162,14 @@ def test_a_joint_value_past_the_farthest_coordinate_is_refused_however_given(tmp
         ask()
     if given != "default":
         assert config.from_words(variables, {"s": "4e10"}).values[0, 0] == 4e10
+
+
+def test_a_q_file_value_past_the_farthest_coordinate_is_said_as_the_files(run_cli, tmp_path):
+    """attack25: a --q-file row of 1e308 was refused as "--q: joint 'l_knee' = 1e+308", an
+    option not given; the refusal names the file."""
+    table = tmp_path / "q.csv"
+    table.write_text("l_knee,l_hip_yaw\n1e308,0\n")
+    result = run_cli("fk", ROBOTS / "humanoid" / "humanoid.urdf.xacro", "--q-file", table)
+    assert result.exit_code == 2, result.output
+    assert f"{table}: joint 'l_knee' = 1e+308 is past" in result.output
+    assert "--q:" not in result.output

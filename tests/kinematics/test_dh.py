@@ -439,3 +439,59 @@ def test_a_table_of_values_no_chain_holds_is_a_located_error(humanoid, tmp_path,
     with pytest.raises(dh.DHError, match=message) as caught:
         dh.load_table(str(path))
     assert caught.value.where.startswith(str(path))
+
+
+FAR_CHAIN = """<robot name="c"><link name="w"/>
+ <joint name="f" type="fixed"><parent link="w"/><child link="a"/>
+  <origin xyz="{x} 0 0" rpy="0.3 0.2 0.1"/></joint><link name="a"/>
+ <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0.1 0 0.2"/>
+  <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint><link name="b"/>
+ <joint name="j2" type="revolute"><parent link="b"/><child link="c"/>
+  <origin xyz="0.3 0.01 0" rpy="1.5707963 0 0"/><axis xyz="0 0 1"/>
+  <limit lower="-1" upper="1" effort="1" velocity="1"/></joint><link name="c"/>
+</robot>"""
+
+
+def test_a_base_past_the_farthest_coordinate_is_refused_as_fk_refuses_it(tmp_path):
+    """attack25: dh read joint origins by itself and printed a base at 1e200 as given, with
+    "reproduces the URDF chain to 0"; it reads them as fk does (fk.joint_placement)."""
+    from conftest import load_text
+
+    with pytest.raises(dh.DHError, match=r"joint 'f': <origin> xyz '1e\+200 0 0' is past the "
+                                         r"4\.612e\+10 m urdftool places a link within"):
+        dh.extract(load_text(tmp_path, FAR_CHAIN.format(x="1e200")), "w", "c")
+    with pytest.raises(dh.DHError, match="not finite"):
+        dh.extract(load_text(tmp_path, FAR_CHAIN.format(x="inf")), "w", "c")
+
+
+@pytest.mark.parametrize("x", ["0", "1e8", "4e10"])
+def test_a_chain_far_from_its_base_link_is_held_to_what_a_float_resolves_there(tmp_path, x):
+    """attack25: a chain 1e8 m from its base link (within numbers.MAX_COORDINATE) was refused
+    as "axes nearly parallel?", its residual (1.3e-9) the rounding of its place; the residual
+    is held to 1e-9 or 16 ulps of the farthest translation, and the table still reproduces the
+    chain there."""
+    from conftest import load_text
+
+    table = dh.extract(load_text(tmp_path, FAR_CHAIN.format(x=x)), "w", "c")
+    assert [round(row.a, 4) for row in table.joints] == [0.3, 0.0]
+    assert table.residual <= max(1e-9, 16 * np.spacing(4e10 if x == "4e10" else float(x)))
+
+
+@pytest.mark.parametrize("edit, where, said", [
+    (lambda t: t["joints"][0].__setitem__("d", 1e300), "joints[0]", r"d: 1e\+300 is past"),
+    (lambda t: t["joints"][1].__setitem__("theta", -1e200), "joints[1]", r"theta: 1e\+200 is"),
+    (lambda t: t["base"][0].__setitem__(3, 1e308), "t.yaml", r"'base' translation: 1e\+308 is"),
+])
+def test_a_table_length_past_the_farthest_coordinate_is_refused(tmp_path, humanoid, edit, where,
+                                                                said):
+    """attack25: a D-H table file's d of 1e300 (or a base at 1e308) was read as given: fk
+    printed a pose at 1e+300 and --verify "worst position error inf m" with numpy's overflow
+    warning. A table's lengths and angles are bounded as joint origins and values are."""
+    table = dh.extract(humanoid, "body_link", "l_foot_link").as_dict()
+    edit(table)
+    path = tmp_path / "t.yaml"
+    path.write_text(yaml.safe_dump(table))
+    with pytest.raises(dh.DHError, match=said + r".* the 4\.612e\+10 (m|rad) urdftool places") \
+            as refused:
+        dh.load_table(str(path))
+    assert refused.value.where.endswith(where)

@@ -93,3 +93,30 @@ def test_cli_usage(run_cli, args, message):
 def test_cli_unknown_tip(run_cli):
     result = run_cli("workspace", HUMANOID, "--tip", "l_fot_link")  # a name given: exit 2
     assert result.exit_code == 2 and "did you mean 'l_foot_link'" in result.output
+
+
+@pytest.mark.parametrize("size", [1e60, 1e100])
+def test_manipulability_of_large_rows_is_the_measure_not_inf(size):
+    """attack25: ``sqrt(det(J J^T))`` of rows of 1e60 squared and cubed past the float range
+    ("mean inf, max inf"), though the measure (1e180) is a float; and of fewer than three
+    joints too. Infinite only when the measure is."""
+    rows = np.array([[2.0, 0.0, 0.0, 1.0], [0.0, 3.0, 0.0, 0.0], [0.0, 0.0, 5.0, 0.0]])
+    jacobian = np.vstack([rows * size, np.zeros((3, 4))])
+    assert manipulability(jacobian) == pytest.approx(math.sqrt(1125) * size ** 3, rel=1e-12)
+    assert manipulability(jacobian[:, :2]) == pytest.approx(6 * size ** 2, rel=1e-12)
+    assert manipulability(np.vstack([rows * 1e150, np.zeros((3, 4))])) == math.inf
+    assert manipulability(np.vstack([rows, np.zeros((3, 4))])) == pytest.approx(math.sqrt(1125))
+
+
+def test_a_point_whose_manipulability_is_past_the_float_range_is_a_usage_error(run_cli):
+    """attack25: ``--point 1e150 0 0`` (within what ik squares) printed "manipulability: min 0,
+    mean inf, max inf" and numpy's overflow warning; 1e100 gives the measure, 1e150 is refused
+    as --point's."""
+    result = run_cli("workspace", HUMANOID, "--tip", "l_foot_link", "--point", "1e100", "0", "0",
+                     "--samples", "50")
+    assert result.exit_code == 0, result.output
+    assert "inf" not in result.output and "Warning" not in result.output
+    result = run_cli("workspace", HUMANOID, "--tip", "l_foot_link", "--point", "1e150", "0", "0",
+                     "--samples", "50", "-f", "json")
+    assert result.exit_code == 2, result.output
+    assert "--point: the manipulability of the point is past what a float holds" in result.output

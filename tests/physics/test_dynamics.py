@@ -699,3 +699,57 @@ def test_a_velocity_or_torque_over_a_limit_is_warned_where_the_limit_is_one(run_
     (tmp_path / "passive.urdf").write_text(PASSIVE_ARM)
     quiet = run_cli("dynamics", tmp_path / "passive.urdf", "--v", "j1=9", "--a", "j1=90")
     assert "over its" not in quiet.stderr, quiet.stderr
+
+
+@pytest.mark.parametrize("inertial, said", [
+    ('<mass value="1e308"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>',
+     "link 'b': <inertial><mass> 1e+308 kg is past the 1e+30 kg"),
+    ('<mass value="1"/><inertia ixx="1e308" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/>',
+     "link 'b': <inertial><inertia ixx> 1e+308 kg m^2 is past"),
+])
+def test_an_inertial_past_the_mass_bounds_is_refused_not_an_energy_of_inf(tmp_path, inertial,
+                                                                          said):
+    """attack25: a mass of 1e308 printed "P = inf J, L = -inf J" (JSON: null, silently); the
+    bounds of physics.mass refuse it where the model is built."""
+    from conftest import load_text
+    from urdftool.errors import DynamicsError
+
+    robot = load_text(tmp_path, '<robot name="r"><link name="a"/><joint name="j" '
+                      'type="revolute"><parent link="a"/><child link="b"/><origin xyz="0 0 1"/>'
+                      '<axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+                      f'</joint><link name="b"><inertial>{inertial}</inertial></link></robot>')
+    with pytest.raises(DynamicsError, match=re.escape(said)):
+        build(robot)
+
+
+def test_a_derived_quantity_past_the_float_range_is_refused_by_name(tmp_path, run_cli):
+    """attack25: velocities (each within numbers.SQUARABLE) on a heavy link gave "K = inf J"
+    and "L = inf J" in text, null in JSON; the state refuses what overflowed, by its name,
+    and the command says it is the values given (exit 2), without numpy's warnings."""
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><joint name="j" type="revolute">'
+                     '<parent link="a"/><child link="b"/><origin xyz="0 0 1"/><axis xyz="0 1 0"/>'
+                     '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint><link name="b">'
+                     '<inertial><origin xyz="1 0 0"/><mass value="1e29"/><inertia ixx="1" '
+                     'ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link></robot>')
+    for words in ((), ("-f", "json")):
+        result = run_cli("dynamics", robot, "--v", "j=1e150", *words)
+        assert result.exit_code == 2, result.output
+        assert "the kinetic energy K is past what a float holds" in result.output
+        assert "inf" not in result.output.replace("info", "") and "RuntimeWarning" not in \
+            result.output
+    assert run_cli("dynamics", robot, "--v", "j=1").exit_code == 0
+
+
+def test_a_negative_total_mass_is_said_as_negative_not_as_no_mass(tmp_path, run_cli):
+    """attack25: a robot whose one link declares -1 kg was warned "no link has a mass (every
+    <inertial> is missing or of mass 0)"."""
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><joint name="j" type="revolute">'
+                     '<parent link="a"/><child link="b"/><origin xyz="0 0 1"/><axis xyz="0 1 0"/>'
+                     '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint><link name="b">'
+                     '<inertial><mass value="-1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" '
+                     'iyz="0" izz="1"/></inertial></link></robot>')
+    result = run_cli("dynamics", robot)
+    assert "the robot's mass is negative (-1 kg)" in result.output, result.output
+    assert "missing or of mass 0" not in result.output

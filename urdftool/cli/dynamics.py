@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import typer
 
-from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at, fail_config,
-                                  fail_over_limit, joint_words, only_with, refuse_bad_outputs,
-                                  show, single_robot, warn)
+from urdftool.cli._common import (PackageOption, UsageError, XacroArgOption, budgeted, fail_at,
+                                  fail_config, fail_over_limit, fail_usage, joint_words,
+                                  only_with, refuse_bad_outputs, show, single_robot, warn)
 
 
 FORMATS = ("text", "json")
@@ -102,6 +102,8 @@ def dynamics(
         result = state(model, values.q, values.v, values.a, max_matrix_rows or None)
     except OverLimit as error:
         fail_over_limit(error, "--max-matrix-rows")
+    except DynamicsError as error:  # (a product of the values given past the float range)
+        fail_usage(UsageError(f"--v, --a: {error}"))
     warn(values.warnings + result.warnings)
     loads = []
     if samples:

@@ -65,8 +65,11 @@ def workspace(
               f"(lower = upper): {what}"])
     from urdftool.report.progress import sampling_progress
 
-    with sampling_progress(samples, machine=output_format != "text") as moved:
-        space = sample(chain, samples, seed, moved)
+    try:
+        with sampling_progress(samples, machine=output_format != "text") as moved:
+            space = sample(chain, samples, seed, moved)
+    except ConfigError as error:  # (a measure past the float range: --point too far)
+        fail_config(error, "--point")
     if plot:
         from urdftool.report.plot import write_items
 

@@ -64,6 +64,7 @@ class Effects:
     new_mass: float = 0.0
     old_com: tuple = (0.0, 0.0, 0.0)
     new_com: tuple = (0.0, 0.0, 0.0)
+    mass_unknown: str | None = None  # why the masses are not compared (an inertial unusable)
     chains: list[ChainEffect] = field(default_factory=list)
     collisions: list[CollisionEffect] = field(default_factory=list)
     worst: dict[str, float] = field(default_factory=dict)
@@ -169,6 +170,9 @@ def effects(old, new, renames: Renames, samples: int = 200, seed: int = 0,
         mass, com = _mass(robot, model, values[:1])
         setattr(result, f"{side}_mass", mass)
         setattr(result, f"{side}_com", com)
+        unusable = _unusable_inertial(robot)
+        if unusable and result.mass_unknown is None:
+            result.mass_unknown = f"{side}: {unusable}"
     for base, tip in chains:  # their names checked by compare.diff.diff
         reaches = []
         for model, values, (b, t) in ((old_model, old_values, (back.get(base, base),
@@ -209,6 +213,21 @@ def _mass(robot, model, values) -> tuple[float, tuple]:
     total = math.fsum(body.mass for _, body in bodies)  # ten links of 0.1 kg weigh 1 kg, exactly
     com = moment / total if total else np.zeros(3)
     return float(total), tuple(float(x) for x in com)
+
+
+def _unusable_inertial(robot) -> str | None:
+    """The first link whose ``<inertial>`` gives no mass to count (malformed, not finite, or
+    past :mod:`urdftool.physics.mass`'s bounds), in words; None when every one counts: a mass
+    of 1e308 was left out of the total, which read "total mass 3 -> 0 kg (-100 %)"."""
+    from urdftool.physics.mass import declared, problem
+
+    for name, link in robot.links.items():
+        if link.find("inertial") is not None:
+            body = declared(link)
+            if body is None or not math.isfinite(body.mass):
+                return (f"link '{name}': <inertial>"
+                        f"{problem(link) or ' is malformed or not finite'}")
+    return None
 
 
 def _collisions(old, new, old_values, new_values, back: dict):

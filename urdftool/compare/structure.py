@@ -183,6 +183,15 @@ def same_value(old, new, tolerance: float = 0.0) -> bool:
     return old == new
 
 
+def percent_change(old: float, new: float) -> float | None:
+    """``new`` relative to ``old`` [%], or None where that is past what a float holds (2 kg
+    -> 1e308 kg was "+inf %"): the one percent of a change, of a field and of the mass."""
+    import math
+
+    percent = 100.0 * (new - old) / abs(old)  # (Python's floats: inf, never an exception)
+    return percent if math.isfinite(percent) else None
+
+
 def _numeric_change(change: Change) -> Change:
     old, new = change.old, change.new
     last = change.field.rpartition(".")[2]
@@ -190,7 +199,7 @@ def _numeric_change(change: Change) -> Change:
     if isinstance(old, float) and isinstance(new, float):
         change.delta = new - old
         if last in RELATIVE and old:
-            change.percent = 100.0 * (new - old) / abs(old)
+            change.percent = percent_change(old, new)
     elif isinstance(old, tuple) and isinstance(new, tuple) and len(old) == len(new) and \
             all(isinstance(x, float) for x in old + new):
         change.delta = length([a - b for a, b in zip(old, new)])

@@ -261,7 +261,10 @@ def from_file(variables: list[Variable], path: str, degrees: bool = False,
         scale = np.array([math.pi / 180.0 if degrees and variables[c].angular else 1.0
                           for c in columns])
         values[:, columns] = table * scale
-    placeable(variables, values)
+    try:
+        placeable(variables, values)
+    except ConfigError as error:  # (the file's, not --q's: "--q: joint 'knee' = 1e+308")
+        raise ConfigError(str(error), path) from None
     return Configurations(variables, values, limit_warnings(variables, values))
 
 

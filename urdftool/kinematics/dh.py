@@ -32,7 +32,6 @@ import numpy as np
 from urdftool.numbers import number
 from urdftool.errors import DHError, UnknownLink, available
 from urdftool.description.urdf import MOVING
-from urdftool.description.values import origin as read_origin
 from urdftool.kinematics import transforms
 
 CONVENTIONS = ("standard", "modified")
@@ -184,13 +183,13 @@ def extract(robot, base: str, tip: str, convention: str = "standard",
     if not moving:
         raise DHError(f"no revolute or prismatic joint between '{base}' and '{tip}'", asked=True)
     frames = (_standard_frames if convention == "standard" else _modified_frames)(moving, pose)
-    rows, residual = [], 0.0
+    rows, residual, tolerance = [], 0.0, _tolerance(*frames, pose)
     for i, (joint, kind, _, _) in enumerate(moving):
         link = transforms.invert(frames[i]) @ frames[i + 1]
         theta, d, a, alpha = (_standard_parameters if convention == "standard"
                               else _modified_parameters)(link)
         error = np.abs(dh_matrices(theta, d, a, alpha, convention) - link).max()
-        if not error <= 1e-9:  # NaN included
+        if not error <= tolerance:  # NaN included
             raise DHError(f"joint '{joint.get('name')}': its axis cannot be placed in D-H form "
                           f"(residual {number(error, 2)}; axes nearly parallel?)", joint)
         residual = max(residual, error)
@@ -200,6 +199,16 @@ def extract(robot, base: str, tip: str, convention: str = "standard",
     table = DHTable(convention, _clean_matrix(frames[0]), _clean_matrix(tool), rows, base, tip,
                     residual)
     return textbook_form(table) if textbook else table
+
+
+def _tolerance(*poses: np.ndarray) -> float:
+    """The residual [m, or of a rotation's entries] a D-H table is held to: 1e-9, or what a
+    float resolves at the farthest of ``poses``' translations when that is coarser (16
+    ulps' worth at 1e8 m is 3e-8): a chain placed 1e8 m from its base link (within
+    ``numbers.MAX_COORDINATE``) was refused as "axes nearly parallel?", its residual the
+    rounding of its place."""
+    far = max((float(np.abs(pose[:3, 3]).max()) for pose in poses), default=0.0)
+    return max(1e-9, 16 * np.spacing(far)) if math.isfinite(far) else 1e-9
 
 
 _TURN = np.diag([-1.0, -1.0, 1.0, 1.0])  # Rot_z(pi)
@@ -242,7 +251,7 @@ def textbook_form(table: DHTable) -> DHTable:
 
     probe = within(random_stream(0), -math.pi, math.pi, (16, len(rows)))
     error = float(np.abs(table_fk(result, probe) - table_fk(table, probe)).max())
-    if not error <= 1e-9:
+    if not error <= _tolerance(table.base, table.tool):
         raise DHError(f"the textbook form of the table does not reproduce it ({number(error, 2)})")
     result.residual = max(table.residual, error)
     return result
@@ -348,10 +357,17 @@ def _frame(origin, x, z) -> np.ndarray:
 
 
 def _origin(joint) -> np.ndarray:
-    found = read_origin(joint)
-    if found.problem:
-        raise DHError(f"joint '{joint.get('name')}': malformed <origin>", found.element)
-    return transforms.from_origin(found)
+    """:func:`urdftool.kinematics.fk.joint_placement` (the one reading of a joint's ``<origin>``
+    as a pose: malformed, not finite, or past ``numbers.MAX_COORDINATE`` refused), its refusal a
+    DHError: dh read the origin by itself, and printed a base at 1e200 as given, with "base *
+    D-H chain * tool reproduces the URDF chain to 0" (every offset below it rounded away)."""
+    from urdftool.errors import FKError
+    from urdftool.kinematics.fk import joint_placement
+
+    try:
+        return joint_placement(joint)
+    except FKError as error:
+        raise DHError(str(error), error.element) from None
 
 
 def _unit_axis(joint) -> np.ndarray:
@@ -424,6 +440,8 @@ def load_table(path: str) -> DHTable:
             values = [math.nan]
         if not all(map(math.isfinite, values)):
             raise DHError("theta, d, a and alpha must all be finite numbers", where=where)
+        for key, value in zip(("theta", "d", "a", "alpha"), values):
+            _within([value], key, "m" if key in ("d", "a") else "rad", where)
         joints.append(DHJoint(row["joint"], kind, *values))
     return DHTable(convention, base, tool, joints, data.get("base_link"), data.get("tip_link"))
 
@@ -440,7 +458,20 @@ def _matrix(value, key: str, path: str) -> np.ndarray:
             np.linalg.det(rotation) > 0 and np.array_equal(matrix[3], [0, 0, 0, 1])):
         raise DHError(f"'{key}' must be a rigid transform (a rotation, a translation and the "
                       "row 0 0 0 1)", where=path)
+    _within(matrix[:3, 3], f"'{key}' translation", "m", path)
     return matrix
+
+
+def _within(values, what: str, unit: str, where: str) -> None:
+    """DHError for a table's length or angle past ``numbers.MAX_COORDINATE``, the bound of
+    every joint origin and value (fk.joint_placement, configuration.placeable): a ``d`` of
+    1e300 printed a pose at 1e+300 and ``--verify`` "worst position error inf m"."""
+    from urdftool.numbers import MAX_COORDINATE
+
+    far = max((abs(float(v)) for v in values), default=0.0)
+    if not far < MAX_COORDINATE:
+        raise DHError(f"{what}: {number(far)} is past the {number(MAX_COORDINATE)} {unit} "
+                      "urdftool places a link within", where=where)
 
 
 # -- FK from a table, and its check against the URDF -----------------------------------------------

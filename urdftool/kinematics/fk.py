@@ -158,7 +158,7 @@ class KinematicModel:
                               + ("is reached twice (a cycle?)" if child in seen
                                  else "does not exist"), element)
             seen.add(child)
-            placement = _placement(element)
+            placement = joint_placement(element)
             if above is not identity or _negative_zero(placement):
                 placement = _compose(above, placement)
             kind = element.get("type")
@@ -340,33 +340,20 @@ class _Scratch:
 NQ = {"revolute": 1, "prismatic": 1, "continuous": 2, "floating": 7, "planar": 4}  # Pinocchio's
 
 
-def placed_within(robot, masses: bool = False) -> None:
-    """FKError for the first joint whose ``<origin>`` is no pose (:func:`_placement`): the one
-    check of joint origins, which :class:`KinematicModel` makes as it builds (fk, ik,
+def placed_within(robot) -> None:
+    """FKError for the first joint whose ``<origin>`` is no pose (:func:`joint_placement`): the
+    one check of joint origins, which :class:`KinematicModel` makes as it builds (fk, ik,
     workspace, collisions, diff) and the models built otherwise ask (dynamics: Pinocchio from
-    the text; render: yourdfpy); with ``masses`` (dynamics), each link's centre of mass too
-    (an ``<inertial><origin>`` at 1e200 gave torques of NaN and "M(q) is singular"); once per
-    robot."""
-    from urdftool.description.values import parse_numbers
-
+    the text, which checks the inertials itself; render: yourdfpy); once per robot."""
     def check() -> bool:
         for element in robot.joints.values():
-            _placement(element)
-        for name, link in robot.links.items() if masses else ():
-            origin = link.find("inertial/origin")
-            found, _ = parse_numbers(origin.get("xyz"), 3) if origin is not None else (None, "")
-            if found and not max(map(abs, found)) < MAX_COORDINATE:  # (NaN: urdfdom refuses)
-                from urdftool.numbers import number
-
-                raise FKError(f"link '{name}': <inertial><origin> xyz {_numbers(found)} is past "
-                              f"the {number(MAX_COORDINATE)} m urdftool places a centre of mass "
-                              "within", origin)
+            joint_placement(element)
         return True
 
-    robot.memo((placed_within, masses), check)
+    robot.memo(placed_within, check)
 
 
-def _placement(element) -> np.ndarray:
+def joint_placement(element) -> np.ndarray:
     """The 4x4 transform of a joint's ``<origin>``, its rotation as Pinocchio has it (urdfdom's
     quaternion of the roll-pitch-yaw, then Eigen's matrix of the quaternion: the same numbers
     to the bit, so that an angle at +-pi reads as Pinocchio's did); FKError when a number in it

@@ -205,7 +205,23 @@ def _step(error: np.ndarray, jacobian: np.ndarray, damping: float) -> np.ndarray
     """The Levenberg-Marquardt step ``-(J^T J + damping I)^-1 J^T e``."""
     hessian = jacobian.T @ jacobian
     hessian.flat[::len(hessian) + 1] += damping
-    return -_solve(hessian, jacobian.T @ error)
+    gradient = jacobian.T @ error
+    with np.errstate(all="ignore"):
+        step = _solve(hessian, gradient)
+        return -(step if np.isfinite(step).all() else _damped_again(hessian, gradient))
+
+
+def _damped_again(hessian: np.ndarray, gradient: np.ndarray) -> np.ndarray:
+    """The step of a ``hessian`` whose solve was not finite, damped by ``_DAMPING`` of its
+    largest diagonal entry; zero (the seed stalls and the next is tried) when that is not
+    finite either. ``_DAMPING`` is absolute, as Pinocchio's CLIK example has it: with a point
+    100 m off the tip (``--point``), J^T J is 1e4 and the damping vanishes beside it; a limb
+    of fewer position rows than joints is then singular to the bit, and the solve was NaN
+    (numpy's "invalid value" warning, and a seed spent on steps of NaN)."""
+    scale = float(np.abs(np.diagonal(hessian)).max(initial=0.0))
+    damped = hessian + _DAMPING * max(scale, 1.0) * np.eye(len(hessian))
+    step = _solve(damped, gradient)
+    return step if np.isfinite(step).all() else np.zeros_like(gradient)
 
 
 def _descend(chain: Chain, x: np.ndarray, target: Target, goal, tolerance: float,
@@ -272,6 +288,9 @@ def _descend(chain: Chain, x: np.ndarray, target: Target, goal, tolerance: float
                 gradient[pushed] = 0.0
                 step = solve(hessian, gradient)
         length2 = float(step @ step)
+        if not math.isfinite(length2):  # (a hessian singular to the bit: see _damped_again)
+            step = _damped_again(hessian, gradient)
+            length2 = float(step @ step)
         if length2 > _MAX_STEP * _MAX_STEP:
             step *= _MAX_STEP / math.sqrt(length2)
         moved = x + step
@@ -392,9 +411,10 @@ def solve(chain: Chain, target: Target, starts: np.ndarray | None = None,
     continuous = chain.continuous if chain.continuous.any() else None
     used, best = 0, None
     for number, start in enumerate(starts, start=1):
-        x, count, done, squared = _descend(chain, _wrap(chain, np.array(start, dtype=float),
-                                                        continuous),
-                                           target, goal, tolerance, iterations, continuous)
+        with np.errstate(all="ignore"):  # (a solve that is not finite is damped again)
+            x, count, done, squared = _descend(
+                chain, _wrap(chain, np.array(start, dtype=float), continuous), target, goal,
+                tolerance, iterations, continuous)
         used += count
         if best is None or squared < best[1]:
             best = (x, squared)

@@ -144,10 +144,11 @@ def build(robot, floating: bool = False) -> Model:
     from urdftool.kinematics.native import build_model
     from urdftool.kinematics.tree import own_free_base
 
-    try:  # (a joint's or a centre of mass's origin at 1e200: torques of NaN)
-        placed_within(robot, masses=True)
+    try:  # (a joint's origin at 1e200: torques of NaN)
+        placed_within(robot)
     except FKError as error:
         raise DynamicsError(str(error), error.element) from None
+    _inertials_within(robot)
     own = own_free_base(robot)
     root = (own or FLOATING_ROOT) if floating else None
     model = build_model(robot, *((pin.JointModelFreeFlyer(), root) if floating and not own
@@ -320,6 +321,24 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
         raise OverLimit("M(q) and C(q, v) of the robot's joint velocities", m.nv, max_rows,
                         "rows")
     q = model.configuration(q_values)
+    with np.errstate(all="ignore"):  # (what overflows is refused below, by its name)
+        result = _computed(model, q, q_values, v_values, a_values)
+    overflowed = _overflowed(result)
+    if overflowed:
+        from urdftool.errors import DynamicsError
+
+        raise DynamicsError(f"{overflowed} is past what a float holds (the joint velocities or "
+                            "accelerations given, times the robot's masses and lengths): "
+                            "nothing to print; give smaller values")
+    return result
+
+
+def _computed(model: Model, q: np.ndarray, q_values: dict, v_values: dict | None,
+              a_values: dict | None) -> State:
+    """:func:`state`'s quantities, as computed."""
+    import pinocchio as pin
+
+    m, d = model.model, model.data
     mass_matrix = pin.crba(m, d, q)
     mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T
     gravity = pin.computeGeneralizedGravity(m, d, q).copy()
@@ -339,6 +358,37 @@ def state(model: Model, q_values: dict, v_values: dict | None = None,
         result.warnings.extend(over_limits(model, v, result.total))
     result.potential = float(result.mass * -m.gravity.linear @ result.com)
     return result
+
+
+def _inertials_within(robot) -> None:
+    """DynamicsError for the first link whose inertial is past the bounds of
+    :func:`urdftool.physics.mass.problem` (an ``<inertial><origin>`` at 1e200 gave torques of
+    NaN and "M(q) is singular", a mass of 1e308 "P = inf J"); Pinocchio reads it as written."""
+    from urdftool.physics.mass import problem as mass_problem
+
+    for name, link in robot.links.items():
+        problem = mass_problem(link)  # (not finite, or not a number: urdfdom refuses)
+        if problem:
+            where = "inertial/origin" if problem.startswith("<origin>") else "inertial"
+            raise DynamicsError(f"link '{name}': <inertial>{problem}", link.find(where))
+
+
+def _overflowed(result: State) -> str | None:
+    """The first of a state's derived quantities that is not finite, by its name, or None:
+    velocities and accelerations are bounded by ``numbers.SQUARABLE`` and the inertials by
+    :mod:`urdftool.physics.mass`'s bounds, each alone, but a velocity of 1e150 on a link of
+    1e29 kg gave "K = inf J" (and JSON's null, silently)."""
+    for name, value in (("the total mass", result.mass), ("the centre of mass", result.com),
+                        ("M(q)", result.M), ("G(q)", result.G), ("C(q, v)", result.C),
+                        ("tau", result.tau), ("the damping torque", result.damping),
+                        ("the friction torque", result.friction),
+                        ("the kinetic energy K", result.kinetic),
+                        ("the potential energy P", result.potential),
+                        ("L = K - P", result.lagrangian),
+                        ("tau with damping and friction", result.total)):
+        if value is not None and not np.all(np.isfinite(value)):
+            return name
+    return None
 
 
 def over_limits(model: Model, v: np.ndarray, total: np.ndarray) -> list[str]:
@@ -370,6 +420,12 @@ def singular(model: Model, mass_matrix: np.ndarray, mass: float) -> list[str]:
     other (joints moving the same body the same way). M(q) is symmetric positive semidefinite:
     a joint's row is zero exactly when its diagonal entry is, and its rank is that of its
     eigenvalues above round-off."""
+    if mass < 0:  # (a link of mass -1 was "every <inertial> is missing or of mass 0")
+        from urdftool.numbers import number
+
+        return [f"the robot's mass is negative ({number(mass)} kg): a link declares a negative "
+                "mass, and M(q), G(q) and the energies mean nothing; 'urdftool check' says "
+                "which"]
     if mass <= 0:
         return ["no link has a mass (every <inertial> is missing or of mass 0): M(q) and every "
                 "gravity torque are zero; check the description (xacro arguments?) with "

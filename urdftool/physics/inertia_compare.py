@@ -69,10 +69,14 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
     notes = [message for _, message in solid.problems]
     if solid.source == "visual":
         notes.append("no collision geometry: computed from the visual geometry")
+    from urdftool.physics.mass import problem
+
+    beyond = problem(link) if mine is None else None  # (a mass of 1e308, a com at 1e200)
     keep = mine.mass if mine is not None and density is None and mine.mass > 0 else None
-    if keep is None and density is None and solid.parts:
+    if keep is None and density is None and solid.parts and not beyond:
         notes.append("no declared mass: computed with 1000 kg/m^3 (pass --density)")
-    body = computed(solid, mass=keep, density=density)
+    # a declared mass past the bounds is kept by no proposal: none is made without --density
+    body = computed(solid, mass=keep, density=density) if not beyond or density else None
     result = MassProperties.of(body) if body is not None else None
     if result is not None and _invalid(result) == "not finite":  # (a mass of 1e308 over its
         # geometry's volume: no inertial to propose, and `--write` wrote ixx="inf" ixy="nan")
@@ -83,7 +87,7 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
         notes.append("no <inertial>: nothing declared to compare with; computed is what its "
                      "geometry implies")
     elif link.find("inertial") is not None and mine is None:
-        verdict, notes = "invalid", notes + ["<inertial> is malformed"]
+        verdict, notes = "invalid", notes + [f"<inertial>{beyond or ' is malformed'}"]
     elif mine is not None and (invalid := _invalid(mine)):
         verdict, notes = "invalid", notes + [f"declared inertia {invalid}"]
     elif result is None:

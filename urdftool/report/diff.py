@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import sys
 
+from urdftool.compare.structure import percent_change
 from urdftool.numbers import number, numbers
 from urdftool.report.escape import lines as _lines, markdown as _code, text as _text
 
@@ -119,15 +120,20 @@ def _effect_lines(effects, quote=_text) -> list[str]:
     return lines
 
 
-def _mass_line(effects) -> str:
+def _mass_line(effects, name=_text) -> str:
+    """The mass and centre of mass effect; ``name``: how the text of a file is escaped (text,
+    or Markdown's code span)."""
+    if effects.mass_unknown:
+        return (f"total mass and centre of mass not compared: {name(effects.mass_unknown)} "
+                "('urdftool check' says why)")
     com = math.dist(effects.old_com, effects.new_com) * 1000  # [mm]; below 1 nm: round-off
     moved = f"centre of mass at zero moved {number(com, 3)} mm" if com >= 1e-6 else \
         "centre of mass unchanged"
     if effects.old_mass == effects.new_mass:
         return f"total mass {number(effects.new_mass, 6)} kg unchanged; {moved}"
     change = effects.new_mass - effects.old_mass
-    percent = f", {number(100 * change / effects.old_mass, 3, plus=True)} %" \
-        if effects.old_mass else ""
+    ratio = percent_change(effects.old_mass, effects.new_mass) if effects.old_mass else None
+    percent = f", {number(ratio, 3, plus=True)} %" if ratio is not None else ""
     return (f"total mass {number(effects.old_mass, 6)} -> {number(effects.new_mass, 6)} kg "
             f"({number(change, plus=True)} kg{percent}); {moved}")
 
@@ -168,7 +174,7 @@ def markdown(result) -> str:
             out += ["", f"{_worst_line(effects, _code)}."]
         else:
             out.append("No frame moved.")
-        out += ["", f"- {_mass_line(effects)}"]
+        out += ["", f"- {_mass_line(effects, _code)}"]
         out += [f"- {line.strip()}" for line in _effect_lines(effects, _code)
                 if line.startswith("  reach") or "collides" in line]
     return "\n".join(out) + "\n"
@@ -215,8 +221,11 @@ def as_json(result) -> dict:
                         "zero_rotation_rad": f.zero_rotation, "max_position_m": f.max_position,
                         "max_rotation_rad": f.max_rotation, "at": f.at, "joints": f.joints}
                        for f in effects.frames],
-            "mass_kg": {"old": effects.old_mass, "new": effects.new_mass},
-            "com_m": {"old": list(effects.old_com), "new": list(effects.new_com)},
+            "mass_kg": {"old": effects.old_mass, "new": effects.new_mass}
+            if not effects.mass_unknown else None,
+            "com_m": {"old": list(effects.old_com), "new": list(effects.new_com)}
+            if not effects.mass_unknown else None,
+            "mass_not_compared": effects.mass_unknown,
             "chains": [{"base": c.base, "tip": c.tip, "old_reach_m": c.old_reach,
                         "new_reach_m": c.new_reach, "old_zero_m": c.old_zero,
                         "new_zero_m": c.new_zero} for c in effects.chains],

@@ -32,7 +32,7 @@ def text(space) -> str:
              f"to {length(upper[1])} m, z from {length(lower[2])} to {length(upper[2])} m "
              f"(vertical extent {length(upper[2] - lower[2])} m)",
              f"  manipulability: min {number(m.min(), 3, scale=peak)}, mean "
-             f"{number(m.mean(), 3, scale=peak)}, max {number(m.max(), 3)}"]
+             f"{number(space.mean_manipulability, 3, scale=peak)}, max {number(m.max(), 3)}"]
     return "\n".join(lines) + "\n"
 
 

@@ -580,3 +580,19 @@ def test_a_mesh_path_leading_by_dots_into_a_package_found_there_is_that_packages
     (tmp_path / "copy").mkdir()
     assert codes("../../other_pkg/meshes/x.stl", packages={"other_pkg": tmp_path / "copy"}) \
         == ["U409"]
+
+
+def test_u416_says_a_gltf_node_that_shears_and_what_urdftool_assumed(tmp_path):
+    """attack25: a GLB whose node matrix shears was measured sheared, silently; U416 says it,
+    and that trimesh and assimp (Gazebo, RViz) apply it alike."""
+    from crossfile_helpers import check_folder
+    from gltf_nodes import column_major as _columns, glb_with_node as _glb
+
+    _glb(tmp_path / "m.glb", matrix=_columns((1, 0.5, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0),
+                                             (0, 0, 0, 1)))
+    text = ('<robot name="r"><link name="a"><collision><geometry><mesh filename="m.glb"/>'
+            '</geometry></collision></link></robot>')
+    found, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U416",))
+    assert found, [f.message for f in findings]
+    assert "glTF node 'n': its matrix shears" in findings[0].message
+    assert "apply it as it is, and so does urdftool" in findings[0].message

@@ -114,3 +114,22 @@ def test_a_limit_of_the_spec_digits_a_power_of_ten_off_is_said_to_be_a_slipped_d
     said = [f.message.endswith(": the same digits 10 times apart, a decimal point slipped")
             for f in findings]
     assert len(findings) == 3 and said == [True, False, True]  # lower, upper, velocity
+
+
+def test_an_infinite_tolerance_is_malformed_not_every_limit_within_it(tmp_path):
+    """attack25: ``tolerance: .inf`` held every limit within it: U703 said nothing of a limit
+    57 degrees past the spec's 30. It is U701, and the limits are judged at tolerance 0."""
+    spec = "unit: deg\ntolerance: .inf\njoints:\n  head_joint: {lower: -30, upper: 30}\n"
+    found, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})
+    assert ("joint_limits.yaml", 2, "U701") in found, found
+    assert sum(code == "U703" for _, _, code in found) == 2, found
+
+
+def test_a_number_yaml_1_1_reads_as_text_is_said_so(tmp_path):
+    """attack25: ``effort: 1e3`` was "effort '1e3' must be a finite number", of a finite
+    number: PyYAML (YAML 1.1) reads a mantissa without a point as text; the message says so."""
+    spec = "unit: deg\njoints:\n  head_joint: {lower: -60, upper: 60, effort: 1e3}\n"
+    _, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})
+    assert [f.message for f in findings] == [
+        "joint 'head_joint': effort '1e3' must be a finite number (YAML 1.1 reads '1e3' as text: "
+        "write it with a point, as 1.0e3)"]

@@ -198,7 +198,7 @@ def _collada_root(data: bytes, recover: bool):
         return None
 
 
-def _gltf_header(path: Path, data: bytes) -> dict | None:
+def gltf_header(path: Path, data: bytes) -> dict | None:
     """The JSON of a ``.gltf``, or of a ``.glb``'s first chunk; None when there is none."""
     import json
 
@@ -214,28 +214,68 @@ def _gltf_header(path: Path, data: bytes) -> dict | None:
     return header if isinstance(header, dict) else None
 
 
+def _listed(value) -> list:
+    return value if isinstance(value, list) else []
+
+
+def _entry(items, index) -> dict:
+    ok = isinstance(index, int) and 0 <= index < len(_listed(items))
+    return items[index] if ok and isinstance(items[index], dict) else {}
+
+
+def gltf_scene_nodes(header: dict) -> list[tuple[int, dict, int]]:
+    """(index, node, depth) of every node a glTF's scene reaches (its default scene, or the
+    first), as trimesh builds the scene from them: each once, whatever names it again; a root
+    node is at depth 1."""
+    nodes = _listed(header.get("nodes"))
+    scene = _entry(header.get("scenes"), header.get("scene", 0))
+    seen, found = set(), []
+    queue = [(index, 1) for index in _listed(scene.get("nodes"))]
+    while queue:
+        index, depth = queue.pop()
+        if not isinstance(index, int) or index in seen or not 0 <= index < len(nodes):
+            continue
+        seen.add(index)
+        node = _entry(nodes, index)
+        found.append((index, node, depth))
+        queue.extend((child, depth + 1) for child in _listed(node.get("children")))
+    return found
+
+
+def gltf_scene_problem(path: Path, data: bytes) -> str | None:
+    """Why trimesh is not to build a glTF's scene, or None: over
+    :data:`~urdftool.description.collada.MAX_NODE_VISITS` nodes, or nested over
+    :data:`~urdftool.description.collada.MAX_NODE_DEPTH` deep, the bounds of a COLLADA scene
+    (trimesh walks a node's parents for each node: a 60 KB GLB of 20,000 nodes each the child
+    of the one before took 4.7 s to load, three loads a check; 100,000 ran out the time)."""
+    from urdftool.description.collada import MAX_NODE_DEPTH, MAX_NODE_VISITS
+
+    header = gltf_header(path, data)
+    if header is None:
+        return None
+    found = gltf_scene_nodes(header)
+    deepest = max((depth for _, _, depth in found), default=0)
+    if len(found) > MAX_NODE_VISITS or deepest > MAX_NODE_DEPTH:
+        return (f"its scene has {len(found)} nodes nested {deepest} deep, over "
+                f"{MAX_NODE_VISITS} nodes or {MAX_NODE_DEPTH} deep")
+    return None
+
+
 def _gltf_triangles(path: Path, data: bytes) -> int | None:
     """Triangles of a glTF scene as trimesh builds it: every node the scene reaches adds its
     mesh's triangles (accessor counts), so a file naming one mesh from a million nodes is
     counted before it is built."""
-    header = _gltf_header(path, data)
+    header = gltf_header(path, data)
     if header is None:
         return None
 
-    def listed(value) -> list:
-        return value if isinstance(value, list) else []
-
-    def entry(items, index) -> dict:
-        ok = isinstance(index, int) and 0 <= index < len(listed(items))
-        return items[index] if ok and isinstance(items[index], dict) else {}
-
     def count(index) -> int:
-        value = entry(header.get("accessors"), index).get("count")
+        value = _entry(header.get("accessors"), index).get("count")
         return value if isinstance(value, int) and value > 0 else 0
 
     def mesh_triangles(mesh: dict) -> int:
         total = 0
-        for primitive in listed(mesh.get("primitives")):
+        for primitive in _listed(mesh.get("primitives")):
             if not isinstance(primitive, dict):
                 continue
             mode = primitive.get("mode", 4)
@@ -245,19 +285,8 @@ def _gltf_triangles(path: Path, data: bytes) -> int | None:
             total += corners // 3 if mode == 4 else max(corners - 2, 0) if mode == 5 else 0
         return total
 
-    nodes = listed(header.get("nodes"))
-    scene = entry(header.get("scenes"), header.get("scene", 0))
-    seen, queue, total = set(), list(listed(scene.get("nodes"))), 0
-    while queue:
-        index = queue.pop()
-        if not isinstance(index, int) or index in seen or not 0 <= index < len(nodes):
-            continue
-        seen.add(index)
-        node = entry(nodes, index)
-        if "mesh" in node:
-            total += mesh_triangles(entry(header.get("meshes"), node["mesh"]))
-        queue.extend(listed(node.get("children")))
-    return total
+    return sum(mesh_triangles(_entry(header.get("meshes"), node["mesh"]))
+               for _, node, _ in gltf_scene_nodes(header) if "mesh" in node)
 
 
 _PLY_SIZES = {"char": 1, "int8": 1, "uchar": 1, "uint8": 1, "short": 2, "int16": 2,

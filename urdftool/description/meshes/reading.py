@@ -10,7 +10,11 @@
   ``metadata[NOT_WELL_FORMED]``; it is scaled by the ``<unit meter>`` it declares, as RViz and
   Gazebo do;
 - triangles whose vertices are not finite numbers are left out, as trimesh leaves them out:
-  none kept is "holds no triangles" saying why, some kept is said in ``metadata[NOT_FINITE]``.
+  none kept is "holds no triangles" saying why, some kept is said in ``metadata[NOT_FINITE]``;
+- a glTF node's transform is applied as trimesh applies it (translation, rotation and scale,
+  a mirror, as every loader does); one that is no such transform (a shear, a bottom row that is
+  not 0 0 0 1, a scale of 0, a rotation that is no unit quaternion) is said in
+  ``metadata[NODE_TRANSFORM]`` with what trimesh and assimp (Gazebo, RViz) make of it.
 
 Meshes are read once per run (:mod:`.run_cache`) and kept per robot by scale
 (:func:`load_mesh`). trimesh is imported lazily.
@@ -39,6 +43,8 @@ NOT_WELL_FORMED = "urdftool_not_well_formed"  # mesh metadata: why its XML was r
 # mesh metadata: which of its triangles use vertices that are not finite numbers (trimesh
 # leaves them out), when some are kept
 NOT_FINITE = "urdftool_not_finite"
+# mesh metadata: a glTF node's transform that is no translation, rotation and scale
+NODE_TRANSFORM = "urdftool_node_transform"
 # what a text mesh holding a number that is not finite holds (nan, inf, an exponent of three
 # digits: 1e400), each a word of its own (not "info", "nanometer" or a COLLADA id "ID3e600"):
 # only a sign, which :func:`_non_finite` counts exactly (a false one costs a second reading)
@@ -113,6 +119,12 @@ def check_size(path: Path, uri: str, limits: MeshLimits, data: bytes,
                                      "pycollada expands it, Assimp (RViz) and Gazebo expand no "
                                      "entity and read those characters where numbers or "
                                      "names should be; write the text in place")
+    if path.suffix.lower() in (".glb", ".gltf"):
+        from urdftool.description.meshes.counting import gltf_scene_problem
+
+        deep = gltf_scene_problem(path, data)
+        if deep:
+            raise MeshProblem("too-large", f"mesh '{uri}': {deep}; not opened")
     triangles = triangle_count(path, data) if count else None
     if triangles is not None:
         refuse_too_many(uri, triangles, limits)
@@ -146,20 +158,23 @@ def refuse_too_many(uri: str, triangles: int, limits: MeshLimits) -> None:
 # the third and fifth powers of what fits
 
 
-def refuse_too_far(uri: str, vertices) -> None:
+def refuse_too_far(uri: str, vertices, cause: str | None = None) -> None:
     """MeshProblem (too-large) for a mesh with a coordinate past :data:`MAX_COORDINATE`, read
     by either reader (urdftool's arrays, trimesh's: give its ``bounds``, of the vertices its
     faces use): 1e200 merged its vertices by integers numpy could not make ("invalid value
     encountered in cast"), overflowed its measures and was "encloses no volume" to
-    inertia."""
+    inertia. ``cause``: what made the coordinates (a glTF node's transform), said with them."""
     if len(vertices):
         far = max(float(vertices.max()), -float(vertices.min()))
         if not far < MAX_COORDINATE:
             from urdftool.numbers import number
 
-            raise MeshProblem("too-large", f"mesh '{uri}' has a coordinate of {number(far)}, "
-                                           f"past the {number(MAX_COORDINATE)} (in its own "
-                                           "unit) urdftool measures meshes within")
+            what = f"of {number(far)}, past" if math.isfinite(far) else "that is not finite, " \
+                "not within"
+            raise MeshProblem("too-large", f"mesh '{uri}' has a coordinate {what} the "
+                                           f"{number(MAX_COORDINATE)} (in its own unit) urdftool "
+                                           "measures meshes within"
+                                           + (f" ({cause})" if cause else ""))
 
 
 _DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
@@ -342,19 +357,99 @@ def _read_mesh(path: Path, uri: str, limits: MeshLimits):
         raise MeshProblem("corrupt", f"mesh '{uri}' holds no triangles"
                                      f"{_why_no_triangles(data, suffix, path, limits)}")
     refuse_too_many(uri, len(loaded.faces), limits)
-    refuse_too_far(uri, loaded.bounds)
+    transform = gltf_node_transform(path, data) if suffix in (".glb", ".gltf") else None
+    refuse_too_far(uri, loaded.bounds, transform)
     if _may_hold_non_finite(data, suffix):  # (some triangles left out: trimesh says nothing)
         bad, total = _non_finite(data, suffix, path, limits)
         if bad:
             loaded.metadata[NOT_FINITE] = (f"{bad} of its {total} triangles use vertices that "
                                            "are not finite numbers (nan, inf or past the float "
                                            "range)")
+    if transform:
+        loaded.metadata[NODE_TRANSFORM] = transform
     unit = collada_unit(data) if suffix == ".dae" else 1.0
     if unit != 1.0:
         loaded.apply_scale(unit)
     if malformed:
         loaded.metadata[NOT_WELL_FORMED] = malformed
     return loaded
+
+
+# How far a glTF node's rotation may be from unit length, and its matrix's columns from
+# orthogonal (of their lengths' product), before it is no rotation (the glTF validator's
+# tolerance for unit quaternions is 5e-6; a float32 export's round-off is 1e-7)
+_NODE_TOLERANCE = 1e-5
+
+
+def gltf_node_transform(path: Path, data: bytes) -> str | None:
+    """What is wrong with the transforms of the nodes a glTF's scene reaches, or None: glTF
+    2.0 requires a node's ``matrix`` to be a translation, rotation and scale (TRS) and its
+    ``rotation`` a unit quaternion. trimesh applies a matrix's upper 3 rows as they are (a
+    shear too) and ignores its bottom row, as assimp (Gazebo, RViz) does; it normalises a
+    rotation that is not unit, which assimp does not (its quaternion's matrix then scales and
+    shears); a scale of 0 flattens the mesh. The first node said, and how many more."""
+    import numpy as np
+
+    from urdftool.description.meshes.counting import gltf_header, gltf_scene_nodes
+
+    header = gltf_header(path, data)
+    problems = []
+    for index, node, _ in gltf_scene_nodes(header) if header is not None else ():
+        problem = _node_problem(node, np)
+        if problem:
+            name = node.get("name")
+            label = f"node '{name}'" if isinstance(name, str) and name else f"node {index}"
+            problems.append(f"glTF {label}: {problem}")
+    if not problems:
+        return None
+    more = f" (and {len(problems) - 1} more node(s))" if len(problems) > 1 else ""
+    return problems[0] + more
+
+
+def _node_problem(node: dict, np) -> str | None:
+    try:
+        matrix = np.array(node["matrix"], dtype=float).reshape(4, 4).T if "matrix" in node \
+            else None
+        rotation = np.array(node["rotation"], dtype=float).reshape(4) if "rotation" in node \
+            else None
+        scale = np.array(node["scale"], dtype=float).reshape(3) if "scale" in node else None
+    except (TypeError, ValueError):
+        return None  # (trimesh refuses it: the file does not load)
+    for what, values in (("matrix", matrix), ("rotation", rotation), ("scale", scale)):
+        if values is not None and not np.isfinite(values).all():
+            return f"its {what} holds a number that is not finite"
+    if matrix is not None:
+        if not np.array_equal(matrix[3], [0.0, 0.0, 0.0, 1.0]):
+            return (f"its matrix's bottom row is {_row(matrix[3])}, not 0 0 0 1 (a projection, "
+                    "no glTF transform): trimesh and assimp (Gazebo, RViz) ignore that row, "
+                    "and so does urdftool")
+        columns = matrix[:3, :3]
+        largest = np.abs(columns).max(axis=0)  # (each column scaled first: a scale of 1e308)
+        if not largest.all():
+            return "its matrix has a scale of 0: it flattens the mesh, which then has no volume"
+        directions = columns / largest
+        directions /= np.sqrt((directions * directions).sum(axis=0))
+        if not abs(np.linalg.det(directions)) > _NODE_TOLERANCE:
+            return ("its matrix flattens the mesh (its columns lie in a plane), which then has "
+                    "no volume")
+        if np.abs(directions.T @ directions - np.eye(3)).max() > _NODE_TOLERANCE:
+            return ("its matrix shears (its columns are not at right angles: no translation, "
+                    "rotation and scale, as glTF requires); trimesh and assimp (Gazebo, RViz) "
+                    "apply it as it is, and so does urdftool")
+    if rotation is not None and abs(float(np.sqrt(rotation @ rotation)) - 1) > _NODE_TOLERANCE:
+        return (f"its rotation {_row(rotation)} is no unit quaternion (length "
+                f"{_row([np.sqrt(rotation @ rotation)])}): trimesh, and urdftool, normalise "
+                "it; assimp (Gazebo, RViz) does not, and its matrix then scales and shears the "
+                "mesh")
+    if scale is not None and not scale.all():
+        return f"its scale {_row(scale)} has a 0: it flattens the mesh, which then has no volume"
+    return None
+
+
+def _row(values) -> str:
+    from urdftool.numbers import number
+
+    return " ".join(number(float(v)) for v in values)
 
 
 def read_once(path: Path, uri: str, limits: MeshLimits):

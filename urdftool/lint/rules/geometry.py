@@ -681,7 +681,7 @@ def empty_package_name(robot):
 
 @rule("U416", "mesh-not-well-formed", Severity.WARNING)
 def mesh_not_well_formed(robot):
-    """A COLLADA (``.dae``) mesh is not well-formed XML, or a mesh has non-finite vertices.
+    """A mesh is not well-formed XML, has non-finite vertices, or an invalid glTF node transform.
 
     assimp, through which RViz, Gazebo and MoveIt load meshes, reads such XML anyway, and so
     does urdftool (as libxml2's recover mode repairs it, then checks the mesh); readers that
@@ -690,14 +690,21 @@ def mesh_not_well_formed(robot):
     by trimesh, so urdftool checks the rest (its bounds, volume and inertia) without it, while
     what a renderer or a physics engine makes of it differs (a bounding box of ``nan``).
 
+    A glTF node's transform is applied as trimesh and assimp apply it: its translation, rotation
+    and scale (a mirror too) as every loader does. glTF requires a node's ``matrix`` to be such
+    a transform and its ``rotation`` a unit quaternion; one that shears, has a bottom row other
+    than ``0 0 0 1``, a scale of 0 or a rotation of another length is said here, with what
+    trimesh (hence urdftool) and assimp (Gazebo, RViz) make of it: they differ on a rotation
+    that is not unit (trimesh normalises it, assimp does not).
+
     Bad: ``<node id="<STL_BINARY>">`` (a ``<`` inside an attribute value); ``v nan 0 0`` in an
-    OBJ used by a face
+    OBJ used by a face; a glTF node ``"matrix": [1, 0, 0, 0, 0.5, 1, ...]`` (a shear)
     Good: ``<node id="STL_BINARY">``, or the file exported again
     """
     outcomes = _mesh_outcomes(robot)
     if not outcomes:
         return  # (no mesh: the mesh readers are not imported)
-    from urdftool.description.meshes import NOT_FINITE, NOT_WELL_FORMED
+    from urdftool.description.meshes import NODE_TRANSFORM, NOT_FINITE, NOT_WELL_FORMED
 
     for link, holder, shape, outcome in outcomes:
         metadata = getattr(outcome, "metadata", {})
@@ -710,3 +717,5 @@ def mesh_not_well_formed(robot):
             yield shape, (f"{_mesh_named(robot, link, holder, shape)}: {metadata[NOT_FINITE]}; "
                           "checked as trimesh reads it (without them), while renderers and "
                           "physics engines read them as they are")
+        if metadata.get(NODE_TRANSFORM):
+            yield shape, f"{_mesh_named(robot, link, holder, shape)}: {metadata[NODE_TRANSFORM]}"

@@ -31,7 +31,7 @@ from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.values import origin as origin_of
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared_of, moments_of, \
-    relative_difference, triangle_violation
+    problem as mass_problem, relative_difference, triangle_violation
 from urdftool.physics import solids
 from urdftool.physics.frames import parent_joints
 from urdftool.physics.support import inside_own, link_reach
@@ -158,6 +158,9 @@ def malformed_inertial(robot):
 
     urdfdom needs ``<mass value>`` and ``<inertia>`` with all of ixx, ixy, ixz, iyy, iyz, izz,
     each a finite number. urdfdom refuses the inertial (and older versions the whole robot); Gazebo then drops the link.
+    A mass past 1e30 kg, a moment past 2.1e51 kg m^2 or a centre of mass past 4.6e10 m is
+    found here too: urdfdom reads it, but what any simulator derives from it (m g z, the
+    parallel-axis m d^2, sums over the links) overflows, and urdftool computes nothing from it.
 
     Bad: ``<inertia ixx="0.01" iyy="0.01" izz="0.01"/>``
     Good: ``<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/>``
@@ -194,6 +197,8 @@ def malformed_inertial(robot):
                 values, problem = number_tuple(text, 1)
                 if problem or not math.isfinite(values[0]):
                     yield inertia, f"{_prefix(link)} {attribute}='{text}' is not a finite number"
+            if inertial is inertials[0] and (beyond := mass_problem(link)):
+                yield inertial, f"{_prefix(link)}{beyond}"
 
 
 @rule("U302", "negative-mass", Severity.ERROR)

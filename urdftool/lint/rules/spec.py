@@ -68,8 +68,10 @@ def _parse(file, urdf_joints):
         problems.append((data.lines["unit"], f"unit '{unit}' must be deg or rad"))
         unit = None
     tolerance = data.get("tolerance", 0)
-    if not isinstance(tolerance, (int, float)) or isinstance(tolerance, bool) or tolerance < 0:
-        problems.append((data.lines.get("tolerance"), f"tolerance '{tolerance}' must be a number >= 0"))
+    if not isinstance(tolerance, (int, float)) or isinstance(tolerance, bool) \
+            or not 0 <= tolerance < math.inf:  # (.inf held every limit within it: U703 silent)
+        problems.append((data.lines.get("tolerance"), f"tolerance '{tolerance}' must be a finite "
+                         f"number >= 0{_text_hint(tolerance)}"))
         tolerance = 0.0
     joints = []
     table = data.get("joints")
@@ -89,6 +91,20 @@ def _parse(file, urdf_joints):
     return (file, problems, joints, unit, float(tolerance))
 
 
+def _text_hint(value) -> str:
+    """Why a number as written is text: YAML 1.1 (the spec's reader, PyYAML) reads ``1e308``,
+    with no point in its mantissa, as a string ("'1e308' must be a finite number", of a finite
+    number); or nothing."""
+    if isinstance(value, str):
+        try:
+            finite = math.isfinite(float(value))
+        except ValueError:
+            return ""
+        if finite:
+            return f" (YAML 1.1 reads '{value}' as text: write it with a point, as 1.0e3)"
+    return ""
+
+
 def _entry_problems(name, entry, joint) -> list:
     """The format problems of one spec joint; ``joint`` is the URDF joint of that name, if any."""
     problems = []
@@ -101,7 +117,8 @@ def _entry_problems(name, entry, joint) -> list:
             problems.append((line, f"joint '{name}': servo_id '{value}' must be an integer"))
         elif key != "servo_id" and (not isinstance(value, (int, float)) or isinstance(value, bool)
                                     or not math.isfinite(value)):
-            problems.append((line, f"joint '{name}': {key} '{value}' must be a finite number"))
+            problems.append((line, f"joint '{name}': {key} '{value}' must be a finite number"
+                             f"{_text_hint(value)}"))
     missing = [key for key in ("lower", "upper") if key not in entry]
     unlimited = joint is not None and joint.get("type") == "continuous"
     if missing and (len(missing) == 1 or not unlimited):  # a continuous joint may have no range
