@@ -81,6 +81,15 @@ def dynamics(
         model = build(robot, floating=floating)
     except (DynamicsError, UnknownLink) as error:
         fail_at(robot, error)
+    if samples:
+        from urdftool.errors import listed
+        from urdftool.physics.dynamics import held_coordinates
+
+        held = [model.variables[k].name for k in held_coordinates(model)]
+        if held:
+            warn([f"{listed(held)} {'has' if len(held) == 1 else 'have'} no range (the "
+                  "coordinates of a planar or floating joint): held at 0 in every pose "
+                  "--samples draws; the margins are over the ranges of the other joints"])
     given = {name: joint_words(values, f"--{name}") for name, values in (("q", q), ("v", v),
                                                                          ("a", a))}
     try:
