@@ -301,8 +301,9 @@ def package_of(path) -> Path | None:
 @per_run
 def _package_at_or_above(where: str) -> Path | None:
     """:func:`package_of` of the files in the folder ``where``, once per run: three steps of a
-    check ask it of each robot file (U019, the build tools, the launch files that may run it),
-    and the robots of a corpus share folders (its 46 URDFs lie in 22: 140 questions)."""
+    check ask it of each robot file (its undeclared dependencies, the build tools, the launch
+    files that may run it), and the robots of a corpus share folders (its 46 URDFs lie in 22:
+    140 questions)."""
     start = Path(where)
     root = containment_root(start)
     for folder in [start, *start.parents]:
