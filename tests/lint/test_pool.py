@@ -245,10 +245,13 @@ def test_a_piece_that_runs_out_in_a_worker_others_filled_runs_again_afresh(monke
     """A piece stopped for memory or death in a worker that did earlier pieces is given once
     more to a fresh worker: only there is the verdict (U900, U018) its own."""
     monkeypatch.setattr(pool.budgets, "grown", lambda size, born: False)  # the worker never retires
-    start = address_space()
-    # the worker starts at the size of this process: a fresh one leaves 250 MB, the one the
-    # first piece filled 150 MB (a second piece the size of this process, as before, had the
-    # test write 1-3 GB of zeros: 3.4 s of CPU)
+    # a fresh worker's own size, measured in one: not this process's, which can be larger by
+    # what a fork leaves behind (64 MB after the scene and collision tests ran here first, and
+    # both pieces then fitted in one worker); a fresh worker leaves 250 MB, the one the first
+    # piece filled 150 MB (a second piece the size of this process, as before, had the test
+    # write 1-3 GB of zeros: 3.4 s of CPU)
+    [start] = run_budgeted(1, lambda _: address_space(), Budget(60.0, None),
+                           lambda _, stop: stop, jobs=1)
     budget = Budget(60.0, start + 250 * MB)
 
     def work(index):  # the second fits alone, not after the first
