@@ -315,13 +315,13 @@ def _inertials_within(robot) -> None:
     """DynamicsError for the first link whose inertial is past the bounds of
     :func:`urdftool.physics.mass.problem` (an ``<inertial><origin>`` at 1e200 gave torques of
     NaN and "M(q) is singular", a mass of 1e308 "P = inf J"); Pinocchio reads it as written."""
-    from urdftool.physics.mass import problem as mass_problem
+    from urdftool.physics.mass import problem_at
 
     for name, link in robot.links.items():
-        problem = mass_problem(link)  # (not finite, or not a number: urdfdom refuses)
-        if problem:
-            where = "inertial/origin" if problem.startswith("<origin>") else "inertial"
-            raise DynamicsError(f"link '{name}': <inertial>{problem}", link.find(where))
+        found = problem_at(link)  # (not finite, or not a number: urdfdom refuses)
+        if found:
+            raise DynamicsError(f"link '{name}': <inertial>{found[1]}",
+                                link.find(f"inertial/{found[0]}"))
 
 
 def _overflowed(result: State) -> str | None:
