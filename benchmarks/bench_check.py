@@ -18,26 +18,28 @@ import subprocess
 import sys
 import sysconfig
 import tempfile
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 BIN = Path(sys.executable).parent
 CORPUS = Path(os.environ.get("URDFTOOL_CORPUS", ROOT.parent / "shared" / "corpus"))
+# [s] for any one run of urdfdom's check_urdf in a benchmark (one file, or the shell loop over
+# the corpus): the slowest healthy run, the 10,000-link chain (its listing is quadratic), takes
+# 4 s, the corpus loop 0.3 s; on a kinematic cycle below the root check_urdf never returns, and
+# a benchmark waiting on it would wait for ever (timing.Hung says which command instead).
+CHECK_URDF_TIMEOUT = 120.0
 
 
-def timed(command: list[str], repeat: int = 7, **kwargs) -> float:
-    """Median wall time of a command in [s]."""
-    samples = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, **kwargs)
-        samples.append(time.perf_counter() - start)
-    return statistics.median(samples)
+def timed(command: list[str], repeat: int = 7, timeout: float | None = None, **kwargs) -> float:
+    """Median wall time of a command in [s]; ``timeout`` as :func:`timing.run_once`'s."""
+    from benchmarks.timing import run_once
+
+    return statistics.median(run_once(command, timeout, **kwargs)[1] for _ in range(repeat))
 
 
 def paired(ours: list[str], reference: list[str], repeat: int = 3,
-           reference_env: dict | None = None) -> tuple[float, float, str]:
+           reference_env: dict | None = None,
+           reference_timeout: float | None = None) -> tuple[float, float, str]:
     """Median wall times [s] of ``ours`` and ``reference``, timed alternately ``repeat`` times
     each, and the samples as text for the report. On a shared virtual machine the speed drifts
     by a third within minutes, so a sample of each taken a minute apart compares two hosts
@@ -45,7 +47,7 @@ def paired(ours: list[str], reference: list[str], repeat: int = 3,
     mine, theirs = [], []
     for _ in range(repeat):
         mine.append(timed(ours, repeat=1))
-        theirs.append(timed(reference, repeat=1, env=reference_env))
+        theirs.append(timed(reference, repeat=1, timeout=reference_timeout, env=reference_env))
     samples = (f"ours {'/'.join(f'{t:.2f}' for t in mine)}, "
                f"reference {'/'.join(f'{t:.2f}' for t in theirs)}")
     return statistics.median(mine), statistics.median(theirs), samples
@@ -114,7 +116,8 @@ def main() -> list[dict]:
         from benchmarks.timing import alternating, load
 
         found = alternating({"ours": [*command, "--no-cache", *map(str, files)],
-                             "reference": (reference_loop, environment)}, repeat=5)
+                             "reference": (reference_loop, environment,
+                                           CHECK_URDF_TIMEOUT)}, repeat=5)
         ours, reference = found["ours"], found["reference"]
         print(f"check {len(files)} corpus URDFs, --no-cache: {ours.text()}; check_urdf loop "
               f"{reference.text()}; {load()}")
@@ -129,7 +132,8 @@ def main() -> list[dict]:
             cached = [*command, "--cache-dir", folder, *map(str, files)]
             timed(cached, repeat=1)  # fills the cache
             again, reference, _ = paired(cached, reference_loop, repeat=5,
-                                         reference_env=environment)
+                                         reference_env=environment,
+                                         reference_timeout=CHECK_URDF_TIMEOUT)
             # other words: the findings come from the cache, the command runs and renders them
             # (no target; what a changed command line costs), each spelling of the format
             # option once.

@@ -26,7 +26,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 import generate  # noqa: E402
-from bench_check import BIN, urdfdom_check_urdf  # noqa: E402
+from bench_check import BIN, CHECK_URDF_TIMEOUT, urdfdom_check_urdf  # noqa: E402
 from timing import alternating, load  # noqa: E402
 
 
@@ -51,7 +51,7 @@ def main() -> list[dict]:
         for shape in ("chain", "star"):
             found = alternating({"ours": [*check, str(files[shape, 10000])],
                                  "check_urdf": ([check_urdf, str(files[shape, 10000])],
-                                                environment),
+                                                environment, CHECK_URDF_TIMEOUT),
                                  "ours 1k": [*check, str(files[shape, 1000])]}, 3)
             ours, reference = found["ours"].median, found["check_urdf"].median
             times["check", shape, 1000], times["check", shape, 10000] = \

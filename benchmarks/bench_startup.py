@@ -20,7 +20,6 @@ median wall time beside it) of runs alternating with its reference, with the loa
 from __future__ import annotations
 
 import os
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -28,8 +27,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from benchmarks.bench_check import corpus_urdfs, urdfdom_check_urdf  # noqa: E402
-from benchmarks.timing import alternating, load  # noqa: E402
+from benchmarks.bench_check import (CHECK_URDF_TIMEOUT, corpus_urdfs,  # noqa: E402
+                                     urdfdom_check_urdf)
+from benchmarks.timing import alternating, load, run_once  # noqa: E402
 
 BIN = Path(sys.executable).parent
 ROBOT = ROOT / "robots" / "r2d2" / "r2d2.urdf.xacro"
@@ -130,10 +130,10 @@ def main() -> list[dict]:
         environment = ros2_packages(Path(folder), environment,
                                     {"r2d2_description": ROBOT.parent})
         # set -e: a reference that fails is no reference (the run stops with its exit code)
-        reference = (f"{BIN / 'xacro'} {ROBOT} > {urdf} && {check_urdf} {urdf}", environment)
+        reference = (f"{BIN / 'xacro'} {ROBOT} > {urdf} && {check_urdf} {urdf}", environment,
+                     CHECK_URDF_TIMEOUT)
         for command in (reference[0], f"grep -q '<robot' {urdf}"):
-            subprocess.run(command, shell=True, env=environment, check=True,
-                           stdout=subprocess.DEVNULL)
+            run_once(command, CHECK_URDF_TIMEOUT, check=True, env=environment)
         found = alternating({"ours": [urdftool, "check", "--no-cache", str(ROBOT)],
                              "reference": reference,
                              "door": door("pass", "check", "--no-cache", str(ROBOT)),

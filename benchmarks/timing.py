@@ -6,18 +6,37 @@ from __future__ import annotations
 
 import os
 import resource
+import signal
 import statistics
 import subprocess
 import time
 
 
-def run_once(command, **kwargs) -> tuple[float, float]:
-    """(CPU time, wall time) in [s] of one run of ``command`` (a list, or a shell string)."""
+class Hung(RuntimeError):
+    """A timed command did not finish within its timeout (urdfdom's check_urdf loops for ever
+    on a kinematic cycle below the root)."""
+
+
+def run_once(command, timeout: float | None = None, check: bool = False,
+             **kwargs) -> tuple[float, float]:
+    """(CPU time, wall time) in [s] of one run of ``command`` (a list, or a shell string).
+    ``timeout`` [s]: past it the command and every process it started (a shell loop's current
+    check_urdf too: they run in a session of their own) are killed and :class:`Hung` raised.
+    ``check``: a command that fails raises ``subprocess.CalledProcessError``."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                   shell=isinstance(command, str), **kwargs)
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                               shell=isinstance(command, str), start_new_session=True, **kwargs)
+    try:
+        process.wait(timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait()
+        raise Hung(f"{command if isinstance(command, str) else ' '.join(map(str, command))} "
+                   f"did not finish in {timeout:g} s") from None
     wall = time.perf_counter() - start
+    if check and process.returncode:
+        raise subprocess.CalledProcessError(process.returncode, command)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime, wall
 
@@ -38,14 +57,16 @@ class Series:
 
 
 def alternating(commands: dict, repeat: int = 7, env: dict | None = None) -> dict:
-    """name -> Series of each command of ``commands`` (name -> command, or (command,
-    environment)), run in turn ``repeat`` times (one warm-up round first, not counted), so that
-    each meets the same load."""
+    """name -> Series of each command of ``commands`` (name -> command, (command,
+    environment), or (command, environment, timeout [s]): see :func:`run_once`), run in turn
+    ``repeat`` times (one warm-up round first, not counted), so that each meets the same
+    load."""
     found = {name: Series() for name in commands}
     for round_ in range(repeat + 1):
         for name, command in commands.items():
-            command, environment = command if isinstance(command, tuple) else (command, env)
-            cpu, wall = run_once(command, env=environment)
+            command, environment, *timeout = command if isinstance(command, tuple) \
+                else (command, env)
+            cpu, wall = run_once(command, *timeout, env=environment)
             if round_:
                 found[name].cpu.append(cpu)
                 found[name].wall.append(wall)

@@ -242,3 +242,19 @@ def test_a_mesh_problem_leaves_a_contextmanager_block_as_itself():
     assert raised.value.__notes__ == ["noted"]
     with pytest.raises(dataclasses.FrozenInstanceError):
         raised.value.kind = "missing"
+
+
+def test_whose_an_error_is_is_said_by_the_error_and_a_table_or_file_is_the_questions():
+    """``asked`` (the question's: exit 2 in every command, cli._common.fail_at) is False for
+    the robot's errors unless the raiser says so, and True for a name the robot lacks, the
+    values a user gave (ConfigError), and an error about a D-H table file (its ``where``)."""
+    from urdftool.errors import (ConfigError, DHError, FKError, IKError, MeshProblem,
+                                 UnknownLink, UsageError)
+
+    assert not FKError("origin past 1e150").asked and not IKError("too many").asked
+    assert not MeshProblem("missing", "mesh 'a.stl' not found").asked
+    assert not DHError("axis cannot be placed", element=None).asked
+    assert IKError("no joint moves 'a' relative to 'a'", asked=True).asked
+    assert DHError("invalid JSON/YAML", where="table.yaml:3").asked
+    assert UnknownLink("b", ["a"]).asked and ConfigError("unknown joint 'x'").asked
+    assert UsageError("takes exactly one FILE").asked

@@ -68,6 +68,7 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
     except REFUSALS as error:
         terminal.fail_usage(error)
     messages = [f"urdftool: {note}" for note in run.notes]
+    messages += [f"urdftool: warning: {warning}" for warning in _unnamed_arguments(run, args)]
     if verbose:
         messages += [f"skipped {path}: {reason}" for path, reason in run.skipped.items()]
         messages += [f"companion of {result.path}: {line}" for result in run.results
@@ -118,6 +119,39 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
             "Install the dependencies (rosdep install --from-paths . --ignore-src) or pass "
             "--package NAME=PATH" + _undeclared(run), err=True)
     return code
+
+
+def _unnamed_arguments(run, args: dict[str, str]) -> list[str]:
+    """A warning for each xacro argument given (``--arg``, ``NAME:=VALUE``) that no file any
+    robot of the run read names: it changes nothing (``check --arg lenght=2`` was silent where
+    the robot commands warn). Said once for the run, not per robot: an argument one robot of
+    a folder reads and another does not is no mistake. Not said when what a robot read is not
+    known (a run the result cache served whole): said only when it holds."""
+    from pathlib import Path
+
+    from urdftool.description.files import read_regular
+    from urdftool.description.meshes import MESH_EXTENSIONS
+    from urdftool.description.xacro_text import argument_warnings
+    from urdftool.report.summary import counted
+
+    if not args or not run.results:
+        return []
+    paths = set()
+    for result in run.results:
+        read = result.read if result.record is None else [
+            found.real for found in result.record.reads().values() if found.failure is None]
+        if not read:
+            return []
+        paths.update(read)
+    sources = {}
+    for path in sorted(paths):
+        if Path(path).suffix.lower() in MESH_EXTENSIONS:
+            continue  # (not read again: a mesh names no argument)
+        try:
+            sources[path] = read_regular(path)
+        except OSError:
+            return []  # (changed since: what it named is not known)
+    return argument_warnings(sources, args, f"the {counted(len(run.results), 'robot')} checked")
 
 
 def _undeclared(run) -> str:

@@ -8,11 +8,27 @@ from dataclasses import dataclass
 
 
 class UrdftoolError(Exception):
-    """Base class of every error urdftool raises on purpose."""
+    """Base class of every error urdftool raises on purpose.
+
+    asked: whose the error is, which decides how every command ends on it
+    (``cli._common.fail_at``, the one reader). True: the question's. The command line asked
+    the robot for what it does not have, or not in the form the command needs: a name it lacks,
+    a tip not below its base, a limb or chain that no joint moves, a limb or D-H chain through
+    a joint the computation does not take, a file of values or a D-H table that cannot be
+    read or does not fit the robot. Another base, tip, name or file answers it; the robot is
+    not at fault. A usage error: one line, exit 2. False (the default): the robot's. It
+    cannot be computed as the command takes it whatever the command line says (a model
+    refuses it, a mimic loop, an origin past what can be computed, a support link with no
+    geometry): the error at its line, exit 1, as ``check``'s findings. Set by the raiser,
+    the only one that knows whether a name came from the user."""
+
+    asked = False
 
 
 class UsageError(UrdftoolError):
     """The command line asked for something impossible (exit code 2)."""
+
+    asked = True
 
 
 class OptionError(UsageError, TypeError, ValueError):
@@ -406,10 +422,12 @@ class LocatedError(UrdftoolError):
     element = None
     location = None
 
-    def __init__(self, message: str, element=None, location=None):
+    def __init__(self, message: str, element=None, location=None, asked: bool = False):
         super().__init__(message)
         self.element = element
         self.location = location
+        if asked:  # (the class's own value otherwise: a ConfigError is always the question's)
+            self.asked = True
 
 
 @dataclass(frozen=True)
@@ -489,7 +507,10 @@ class ConfigError(LocatedError):
     """A configuration that cannot be used; ``where`` is a file (and row) when it came from one,
     ``argument`` which of several inputs it came from (the parameter: q, v or a of the dynamics;
     q, xyz, orientation, frame_q or targets of inverse kinematics), when known. The message names no
-    command-line option: the command adds it."""
+    command-line option: the command adds it. Always the question's (``asked``): values given
+    by the user."""
+
+    asked = True
 
     def __init__(self, message: str, where: str | None = None):
         super().__init__(f"{where}: " + message if where else message)
@@ -511,10 +532,13 @@ class FKError(LocatedError):
 
 class DHError(LocatedError):
     """A chain that cannot be written in D-H form, or a table that cannot be read; ``where`` is
-    the table file (and row) when it came from one."""
+    the table file (and row) when it came from one; ``asked``: the question's (a chain the
+    user chose; a table the user gave, every error with a ``where``), see
+    :class:`UrdftoolError`."""
 
-    def __init__(self, message: str, element=None, where: str | None = None):
-        super().__init__(message, element)
+    def __init__(self, message: str, element=None, where: str | None = None,
+                 asked: bool = False):
+        super().__init__(message, element, asked=asked or where is not None)
         self.where = where
 
 
@@ -524,10 +548,12 @@ class ModelBuildError(LocatedError):
 class IKError(LocatedError):
     """A chain or target that inverse kinematics cannot work with (a limb without a moving
     joint, a target file that cannot be read); ``where`` is the target file (and row) when it
-    came from one. A link name the robot does not have is an :class:`UnknownLink`."""
+    came from one. A link name the robot does not have is an :class:`UnknownLink`;
+    ``asked``: the question's (a limb the user chose), see :class:`UrdftoolError`."""
 
-    def __init__(self, message: str, element=None, where: str | None = None):
-        super().__init__(f"{where}: " + message if where else message, element)
+    def __init__(self, message: str, element=None, where: str | None = None,
+                 asked: bool = False):
+        super().__init__(f"{where}: " + message if where else message, element, asked=asked)
         self.where = where
 
 
@@ -546,7 +572,9 @@ class DotMissing(UrdftoolError):
 
 class UnknownName(UrdftoolError, ValueError):
     """A name asked for (a link, a rule) that does not exist; the message lists the close and
-    the valid ones."""
+    the valid ones. Always the question's (``asked``)."""
+
+    asked = True
 
 
 class UnknownLink(UnknownName):

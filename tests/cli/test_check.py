@@ -135,3 +135,32 @@ def test_a_run_checking_nothing_says_why_of_the_launch_files_named_alone(run_cli
     assert len(said) == 1 and said[0].startswith(f"skipped {named[0]}: a launch file that "), said
     verbose = run_cli("check", "-v", *named).stderr
     assert f"skipped {named[1]}: no robot below" in verbose
+
+
+ARGUED = """<robot name="{name}" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="{arg}" default="1"/>
+  <link name="a"><visual><geometry><box size="$(arg {arg}) 1 1"/></geometry></visual></link>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("output_format", ["text", "json"])
+def test_a_xacro_argument_no_robot_checked_names_is_said_once_on_standard_error(
+        run_cli, tmp_path, output_format):
+    """``check --arg lenght=2`` for ``length`` was silent (the robot commands warn): a
+    warning on standard error, once for the run, for an argument no file of any robot checked
+    names; none for one that a robot of the folder reads (``width``), though another does
+    not; the report and the exit code as without it."""
+    for name, arg in (("long", "length"), ("wide", "width")):
+        (tmp_path / f"{name}.urdf.xacro").write_text(ARGUED.format(name=name, arg=arg))
+    result = run_cli("check", tmp_path, "--arg", "lenght=2", "width:=3", "-f", output_format,
+                     "--no-cache")
+    plain = run_cli("check", tmp_path, "-f", output_format, "--no-cache")
+    assert result.exit_code == plain.exit_code == 0, result.output
+    assert result.stdout == plain.stdout
+    assert result.stderr.splitlines() == [
+        "urdftool: warning: xacro argument 'lenght' (lenght:=2) is named by no file of the 2 "
+        "robots checked (no <xacro:arg name=\"lenght\">, no $(arg lenght)): it changes "
+        "nothing; did you mean 'length'?"]
+    named = run_cli("check", tmp_path, "--arg", "length=2", "--no-cache")
+    assert named.exit_code == 0 and named.stderr == "", named.output

@@ -181,3 +181,107 @@ def test_a_command_that_sets_nothing_reports_its_errors_in_its_format(tmp_path, 
         result = CliRunner().invoke(app, [str(path), "--format", given])
         assert result.exit_code == 1
         assert ('"error": "cannot compute"' in result.stdout) is stdout, result.stdout
+
+
+def test_a_xacro_argument_no_file_names_is_said_to_change_nothing(tmp_path, run_cli):
+    """``--arg lenght=2`` for ``length``: xacro takes it without a word and the robot is
+    built from the defaults; the commands said nothing of it either."""
+    path = tmp_path / "arm.urdf.xacro"
+    path.write_text(ARM.replace('<robot name="arm">', '<robot name="arm" xmlns:xacro='
+                                '"http://www.ros.org/wiki/xacro"><xacro:arg name="length" '
+                                'default="0.3"/>').replace('length="0.3"',
+                                                           'length="$(arg length)"'))
+    result = run_cli("fk", str(path), "--arg", "lenght=2", "length:=0.5")
+    assert result.exit_code == 0, result.output
+    assert "warning: xacro argument 'lenght' (lenght:=2) is named by no file of the robot " \
+        "(no <xacro:arg name=\"lenght\">, no $(arg lenght)): it changes nothing; did you " \
+        "mean 'length'?" in result.stderr
+    assert "'length'" not in result.stderr.replace("did you mean 'length'", "")
+    result = run_cli("fk", str(path), "--arg", "length=0.5")
+    assert result.exit_code == 0 and "warning" not in result.stderr, result.output
+
+
+def test_a_xacro_argument_for_a_urdf_is_said_to_change_nothing(arm, run_cli):
+    result = run_cli("fk", str(arm), "--arg", "x=1")
+    assert result.exit_code == 0, result.output
+    assert "warning: xacro argument 'x' given, but " in result.stderr
+    assert "is read as URDF, not expanded by xacro: it changes nothing" in result.stderr
+
+
+# a slider on a planar base: limbs and chains to ask for wrongly, and a mimic loop to refuse
+PLANAR_ARM = ('<robot name="p"><link name="world"/><link name="base"/><link name="upper"/>'
+              '<link name="lower"/><joint name="slide" type="planar"><parent link="world"/>'
+              '<child link="base"/><axis xyz="0 0 1"/></joint>'
+              '<joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>'
+              '<origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>'
+              '<limit lower="-1" upper="1" effort="10" velocity="1"/></joint>'
+              '<joint name="wrist" type="fixed"><parent link="upper"/><child link="lower"/>'
+              '<origin xyz="0.3 0 0"/></joint></robot>')
+IK = ["--xyz", "0.3", "0", "0"]
+
+
+@pytest.mark.parametrize("words, message", [
+    (["dh", "--base", "upper", "--tip", "base"], "swap --base and --tip"),
+    (["dh", "--base", "upper", "--tip", "lower"], "no revolute or prismatic joint"),
+    (["dh", "--tip", "upper"], "joint 'slide' is planar"),
+    (["dh", "--base", "base", "--tip", "nolink"], "link 'nolink' does not exist"),
+    (["ik", "--base", "upper", "--tip", "lower", *IK], "no joint moves 'lower'"),
+    (["ik", "--tip", "upper", *IK], "joint 'slide' between 'world' and 'upper' is planar"),
+    (["ik", "--base", "base", "--tip", "nolink", *IK], "link 'nolink' does not exist"),
+    (["workspace", "--base", "lower", "--tip", "lower"], "no joint moves 'lower'"),
+    (["workspace", "--tip", "lower"], "is planar"),
+    (["fk", "--frame", "nolink"], "link 'nolink' does not exist"),
+    (["dynamics", "--support", "nolink"], "link 'nolink' does not exist"),
+    (["inertia", "--link", "nolink"], "link 'nolink' does not exist"),
+    (["diff", "SAME", "--chain", "base:nolink"], "--chain: link 'nolink' does not exist"),
+    (["diff", "SAME", "--chain", "lower:lower"], "names link 'lower' at both ends"),
+])
+@pytest.mark.parametrize("output_format", ["text", "json"])
+def test_a_question_the_robot_cannot_answer_as_asked_is_a_usage_error_in_every_command(
+        run_cli, tmp_path, words, message, output_format):
+    """The user's mistake (a link that does not exist, a base below its tip, a limb no joint
+    moves, a limb or chain through a joint the computation does not take) ends every command
+    the same way: one line on standard error, nothing on standard output, exit 2
+    (``UrdftoolError.asked``, read by ``fail_at`` alone). dh, ik and workspace exited 1 for
+    "swap --base and --tip" and "no joint moves", 2 for a link that does not exist."""
+    path = tmp_path / "robot.urdf"
+    path.write_text(PLANAR_ARM)
+    words = [str(path) if word == "SAME" else word for word in words]
+    result = run_cli(words[0], path, *words[1:], "-f", output_format)
+    assert result.exit_code == 2, result.output
+    assert result.stdout == ""
+    [line] = result.stderr.splitlines()
+    assert line.startswith("urdftool: error: ") and message in line, line
+
+
+def test_a_robot_the_command_cannot_take_is_still_the_robots_error(run_cli, tmp_path):
+    """The other side of the line: what no command line can change (a mimic loop, a support
+    link with no geometry to stand on) stays exit 1, at its line."""
+    path = tmp_path / "robot.urdf"
+    path.write_text(PLANAR_ARM.replace(
+        '<limit lower="-1"', '<mimic joint="shoulder"/><limit lower="-1"'))
+    result = run_cli("ik", path, "--base", "base", "--tip", "upper", *IK)
+    assert result.exit_code == 1, result.output
+    assert f"{path.name}:" in result.stderr and "urdftool: error" not in result.stderr
+    path.write_text(PLANAR_ARM.replace('type="planar"', 'type="fixed"'))
+    standing = run_cli("dynamics", path, "--support", "lower")
+    assert standing.exit_code == 1, standing.output
+    assert "has no collision or visual geometry" in standing.stderr
+
+
+def test_a_d_h_table_that_does_not_fit_is_a_usage_error_named_by_its_file(run_cli, tmp_path):
+    """A D-H table given to ``fk --dh`` is the user's input, as a --q-file: unreadable, or
+    naming a joint the robot lacks, exit 2 with the file named (it was exit 1, as if the
+    robot were wrong)."""
+    path = tmp_path / "robot.urdf"
+    path.write_text(PLANAR_ARM)
+    table = tmp_path / "table.yaml"
+    for text, message in (
+            ("joints: [{joint: nope, theta: 0, d: 0, a: 0, alpha: 0}]",
+             f"{table}: D-H table joint 'nope' is not a joint of the robot"),
+            ("joints: [{joint: shoulder, theta: 0 d: 0}", f"{table}:1: invalid JSON/YAML")):
+        table.write_text(text)
+        result = run_cli("fk", path, "--dh", table, "--base", "base", "--frame", "upper")
+        assert result.exit_code == 2, result.output
+        assert result.stderr.splitlines() == [f"urdftool: error: {message}"] or \
+            result.stderr.startswith(f"urdftool: error: {message}"), result.stderr

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import json
 
 import numpy as np
@@ -721,3 +722,17 @@ def test_check_tells_touching_meshes_at_the_srdf_poses_without_building_their_hu
 
     assert overlaps("0.0995") == [] and built == []
     assert overlaps("0.05") == [(("fixed_box", "sliding_box"), 0.05)] and built
+
+
+def test_a_planar_joint_is_one_joint_of_the_pose_not_three(tmp_path):
+    """The header counted the values set: a robot of one planar and one prismatic joint was
+    'at the given configuration (4 joints)'."""
+    from urdftool.report.collisions import pose_text
+
+    planar = ('<link name="deck"/><joint name="slide" type="planar"><parent link="base"/>'
+              '<child link="deck"/><axis xyz="0 0 1"/></joint>')
+    report = pose.check_pose(robot_of(tmp_path, two_boxes(0, 1, planar)), {"slide.x": "0.5"})
+    assert len(report.q) == 4 and report.joints == 2
+    stream = io.StringIO()
+    pose_text("boxes", report, custom=True, stream=stream)
+    assert "at the given configuration (2 joints)" in stream.getvalue()

@@ -225,6 +225,15 @@ def test_a_chain_without_two_ends_is_a_usage_error(text):
         chain_ends(text, {"base", "tip"})
 
 
+@pytest.mark.parametrize("text, links", [("tip:tip", {"base", "tip"}), ("a:a", ()),
+                                         ("x:y:x:y", {"x:y", "x"})])
+def test_a_chain_from_a_link_to_itself_is_a_usage_error(text, links):
+    """Its reach is 0 on both sides: it was compared as "equal", where ik and workspace refuse a
+    limb no joint moves (checked once the ends are split among the links: 'x:y' twice)."""
+    with pytest.raises(UsageError, match="at both ends"):
+        chain_ends(text, links)
+
+
 def test_chain_reach(tmp_path):
     longer = ARM.replace('<origin xyz="0 0 0.3"/>', '<origin xyz="0 0 0.35"/>')
     result = compare(tmp_path, longer, chains=(("base", "hand"),))

@@ -432,8 +432,8 @@ def test_a_mesh_uri_is_checked_once_per_run_for_robots_of_one_folder(tmp_path, m
     (tmp_path / "m.stl").write_text("solid x\nendsolid x\n")
     robots = [_robot(tmp_path) for _ in range(3)]
     looked = []
-    real = meshes.uris.inside
-    monkeypatch.setattr(meshes.uris, "inside", lambda *a: looked.append(a) or real(*a))
+    real = meshes.uris.real_inside
+    monkeypatch.setattr(meshes.uris, "real_inside", lambda *a: looked.append(a) or real(*a))
     with one_run():
         assert {resolve(robot, "m.stl") for robot in robots} == {tmp_path / "m.stl"}
         with pytest.raises(MeshProblem) as first:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from urdftool.description.xacro_text import condition_dropping
+from urdftool.description.xacro_text import condition_dropping, unnamed_arguments
 
 SOURCE = b"""<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
   <ros2_control name="a" type="system">
@@ -91,3 +91,18 @@ def test_a_part_calling_its_own_macros_makes_no_links_whatever_uri_binds_xacro(t
   <xacro:trans joint="a"/>
 </robot>""".encode()
         assert not calls_make_links(data, [], False, None, 1 << 20), uri
+
+
+def test_an_argument_no_file_names_is_unnamed_with_the_declared_names_close_to_it():
+    sources = {"robot.urdf.xacro": b'<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                                   b'<xacro:arg name="length" default="1"/>'
+                                   b'<xacro:include filename="part.xacro"/></robot>',
+               "part.xacro": b'<robot><xacro:property name="w" value="$(arg width)"/>'
+                             b'<x v="$(eval arg(\'prefix\') + \'a\')"/></robot>'}
+    given = {"length": "2", "width": "1", "prefix": "p", "lenght": "2", "sim": "true",
+             "len": "3"}
+    assert unnamed_arguments(sources, given) == {"lenght": ["length"], "sim": [], "len": []}
+    assert unnamed_arguments(sources, {"length": "2"}) == {}
+    # a name that is part of another word is not named: 'width' in 'width_2' would be
+    assert unnamed_arguments({"a.xacro": b"$(arg width_2) $(arg my-width)"},
+                             {"width": "1"}) == {"width": []}

@@ -10,6 +10,7 @@ give crosscheck's verdict.
 
 from __future__ import annotations
 
+import functools
 import subprocess
 import sys
 from pathlib import Path
@@ -37,6 +38,13 @@ pytestmark = pytest.mark.skipif(CORPUS is None or not (CORPUS / ROBOTS["PR2"]).i
                                 reason="the corpus (../shared/corpus) is not here")
 
 
+@functools.cache
+def _crosscheck(robot: str):
+    """crosscheck's report on ``robot`` with every loader installed, made once per test process:
+    both tests below read it (each loader's verdict is its own worker's)."""
+    return crosscheck(str(CORPUS / ROBOTS[robot]), [name for name in LOADERS if available(name)])
+
+
 def _check(path: Path, target: str):
     from urdftool.lint.runner import check_paths
 
@@ -48,8 +56,7 @@ def _check(path: Path, target: str):
 @pytest.mark.parametrize("robot", list(ROBOTS))
 def test_every_load_failure_is_predicted_at_its_line(robot, capsys):
     path = CORPUS / ROBOTS[robot]
-    present = [name for name in LOADERS if available(name)]
-    report = crosscheck(str(path), present)
+    report = _crosscheck(robot)
     rows = []
     for result in report.loaders:
         if result.loaded:
@@ -103,7 +110,7 @@ def test_crosscheck_agrees_with_the_loader_run_by_hand(robot, loader):
     path = str(CORPUS / ROBOTS[robot])
     done = subprocess.run([sys.executable, "-c", BY_HAND[loader], path], capture_output=True,
                           text=True, timeout=300)
-    [result] = crosscheck(path, [loader]).loaders
+    [result] = [result for result in _crosscheck(robot).loaders if result.name == loader]
     assert result.loaded == (done.returncode == 0), (done.stderr[-400:], result.error)
     if result.loaded:
         import re

@@ -28,7 +28,8 @@ PRE_COMMIT = [sys.executable, "-m", "pre_commit"]
 # it) from its cache, instead of by virtualenv and pip from the package index
 UV_PRE_COMMIT = """
 import os, sys
-from pre_commit import lang_base, main
+from pre_commit import lang_base, main, store
+from pre_commit.commands import try_repo
 from pre_commit.languages import python
 from pre_commit.util import cmd_output_b
 
@@ -45,6 +46,11 @@ def health_check(prefix, version):  # uv writes 3.11.7 where virtualenv writes 3
     return None if exists else "no python in the environment"
 
 python.install_environment, python.health_check = install_environment, health_check
+# try-repo keeps its hook environments in a store of its own, in a folder it deletes at its
+# end: each call installed urdftool again (3.4 s of CPU). They are kept in PRE_COMMIT_HOME, as
+# `pre-commit run` keeps them for a user, so the second call uses the first's; a working tree
+# with changes not committed is a new commit each call (try-repo's shadow), installed again.
+try_repo.Store = lambda folder: store.Store()
 sys.exit(main.main())
 """
 UV = Path(sys.executable).parent / "uv"

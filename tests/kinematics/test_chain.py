@@ -82,3 +82,14 @@ def test_a_limb_whose_pinocchio_data_cannot_fit_is_refused_before_allocating(tmp
     with pytest.raises(IKError, match="300 joint variables from 'l0' to 'l300'.*cube of the"):
         build_chain(robot, None, "l300")
     assert build_chain(robot, "l290", "l300").tip == "l300"  # a sub-chain fits
+
+
+def test_a_limb_variable_of_no_range_is_held(tmp_path):
+    """double_pendulum_simple's joints are written ``<limit lower="0" upper="0">``: its
+    workspace of 2,000 samples was one point, said as a reach of 0.3 m with no word of it."""
+    path = tmp_path / "robot.urdf"
+    path.write_bytes(SAME_NAMES.replace(b'lower="-2" upper="2"', b'lower="0.5" upper="0.5"'))
+    chain = build_chain(load(str(path)), "base", "LF_FOOT")
+    assert chain.held == ["LF_KFE"]
+    path.write_bytes(SAME_NAMES)
+    assert build_chain(load(str(path)), "base", "LF_FOOT").held == []

@@ -304,8 +304,9 @@ def test_cli_dh_text_and_located_error(run_cli, tmp_path):
                     '<joint name="fly" type="floating"><parent link="b"/><child link="t"/></joint>'
                     "</robot>")
     result = run_cli("dh", path, "--base", "b", "--tip", "t")
-    assert result.exit_code == 1
-    assert "f.urdf:2: error: joint 'fly' is floating" in result.stderr
+    # a chain the user chose that has no D-H form: a usage error, at the joint (it was exit 1)
+    assert result.exit_code == 2
+    assert result.stderr.startswith(f"urdftool: error: {path}:2: joint 'fly' is floating")
 
 
 def test_cli_dh_base_defaults_to_the_root_and_needs_one(run_cli, tmp_path):
@@ -356,8 +357,10 @@ def test_cli_table_with_only_the_specified_keys(run_cli, tmp_path):
                      "--base", "body_link", "--frame", "l_foot_link")
     assert result.exit_code == 0 and "agree" in result.stdout, result.output
     result = run_cli("fk", HUMANOID, "--dh", path, "--verify")
-    assert result.exit_code == 1
-    assert f"{path}: error: the D-H table does not name its base_link" in result.stderr
+    # the table the user gave does not fit: a usage error, as a --q-file's (it was exit 1)
+    assert result.exit_code == 2
+    assert f"urdftool: error: {path}: the D-H table does not name its base_link" in \
+        result.stderr
 
 
 def test_cli_dh_options_that_contradict_the_table(run_cli, tmp_path):
@@ -365,7 +368,7 @@ def test_cli_dh_options_that_contradict_the_table(run_cli, tmp_path):
     path.write_text(yaml.safe_dump(dh.extract(load(HUMANOID), "body_link", "l_foot_link")
                                    .as_dict()))
     result = run_cli("fk", HUMANOID, "--dh", path, "--verify", "--frame", "l_hip_link")
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert "chain is body_link -> l_foot_link; --frame l_hip_link names another" in result.stderr
     result = run_cli("fk", HUMANOID, "--dh", path, "--frame", "l_foot_link", "--frame", "x")
     assert result.exit_code == 2 and "at most one --frame" in result.output

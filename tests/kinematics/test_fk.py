@@ -80,6 +80,23 @@ def test_tiny_model_with_floating_continuous_mimic_prismatic_matches_pinocchio(t
     assert tiny.model.nq == 7 + 2 + 1 + 1  # free-flyer quaternion, continuous cos/sin
 
 
+def test_a_planar_joint_matches_pinocchio(tmp_path):
+    """A planar joint (x, y in its frame's plane, yaw about its z; Pinocchio's q x, y, cos,
+    sin) in a tilted frame, below it an arm: fk's poses are Pinocchio's."""
+    path = tmp_path / "planar.urdf"
+    path.write_text('<robot name="p"><link name="w"/><link name="b"/><link name="a"/>'
+                    '<joint name="slide" type="planar"><parent link="w"/><child link="b"/>'
+                    '<origin xyz="0.1 0 0.2" rpy="0.3 -0.4 0.2"/><axis xyz="0 0 1"/></joint>'
+                    '<joint name="elbow" type="revolute"><parent link="b"/><child link="a"/>'
+                    '<origin xyz="0.2 0 0"/><axis xyz="1 0 0"/>'
+                    '<limit lower="-2" upper="2" effort="1" velocity="1"/></joint></robot>')
+    model = KinematicModel(load(path))
+    assert [v.name for v in model.variables] == ["slide.x", "slide.y", "slide.yaw", "elbow"]
+    values = config.random(model.variables, 20, seed=2).values
+    np.testing.assert_allclose(model.link_poses(values), _pinocchio_poses(model, values),
+                               atol=1e-12)
+
+
 def test_mimic_joint_follows_with_multiplier_and_offset(tiny):
     spin = tiny.variables[[v.name for v in tiny.variables].index("spin")]
     assert spin.kind == "continuous"

@@ -68,6 +68,44 @@ def test_a_mimic_of_a_mimic_is_posed_as_urdftool_fk_poses_it(tmp_path):
         np.testing.assert_allclose(scene.frames[link], pose, atol=1e-9)
 
 
+# a tilted planar base carrying an arm that carries an object on a floating joint
+MULTIPLE = """<robot name="p">
+  <link name="world"/>
+  <link name="base"><visual><geometry><box size="0.2 0.1 0.1"/></geometry></visual></link>
+  <link name="arm"><visual><geometry><box size="0.05 0.4 0.05"/></geometry></visual></link>
+  <link name="obj"><visual><geometry><sphere radius="0.05"/></geometry></visual></link>
+  <joint name="slide" type="planar"><parent link="world"/><child link="base"/>
+    <origin xyz="0 0 0.1" rpy="0.3 0 0"/><axis xyz="0 0 1"/></joint>
+  <joint name="elbow" type="revolute"><parent link="base"/><child link="arm"/>
+    <origin xyz="0.2 0 0"/><axis xyz="1 0 0"/>
+    <limit lower="-2" upper="2" effort="10" velocity="1"/></joint>
+  <joint name="free" type="floating"><parent link="arm"/><child link="obj"/>
+    <origin xyz="0 0.4 0"/></joint>
+</robot>"""
+
+
+def test_planar_and_floating_joints_are_posed_as_urdftool_fk_poses_them(tmp_path):
+    """yourdfpy counts a planar joint as 2 values and a floating one as 3: render drew both at
+    their origin whatever --q said (``render --q slide.x=1``: the base at 0, exit 0). Posed
+    by urdftool now, as fk poses them (fk: Pinocchio's, tests/kinematics/test_fk.py)."""
+    from urdftool.kinematics import configuration as config
+    from urdftool.kinematics.fk import KinematicModel, forward_kinematics
+
+    path = tmp_path / "multiple.urdf"
+    path.write_text(MULTIPLE)
+    robot = load(path)
+    model = KinematicModel(robot)
+    chosen = config.random(model.variables, 1, seed=5)
+    q = {v.name: float(x) for v, x in zip(model.variables, chosen.values[0])}
+    assert abs(q["slide.x"]) > 0.01 and abs(q["free.roll"]) > 0.01
+    scene = scene_model(robot).pose(q)
+    fk = forward_kinematics(model, chosen)
+    for link, pose in zip(fk.frames, fk.matrices[0]):
+        np.testing.assert_allclose(scene.frames[link], pose, atol=1e-9)
+    assert scene_model(robot).pose({}).frames["obj"][:3, 3] == pytest.approx(
+        forward_kinematics(model, config.from_words(model.variables, {})).matrices[0, -1][:3, 3])
+
+
 @pytest.mark.parametrize("written, unit", [("1e308 1e308 1e308", "1 1 1"), ("1e-320 0 0", "1 0 0"),
                                            ("0 0 1e-200", "0 0 1"), ("0 3 0", "0 1 0")])
 def test_an_axis_is_posed_and_drawn_as_urdftool_fk_reads_it(tmp_path, written, unit):

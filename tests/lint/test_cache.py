@@ -720,3 +720,15 @@ def test_a_kept_finding_keeps_the_parts_a_report_says_once():
     assert cache_module._finding(json.loads(json.dumps(cache_module._record(finding)))) == finding
     with pytest.raises(TypeError):
         cache_module._finding({**cache_module._record(finding), "repeated": [["why", 1]]})
+
+
+def test_a_file_the_cache_holds_still_says_what_its_check_read(robot, tmp_path, monkeypatch):
+    """A result served from the cache names the files its check read, as a worker's does
+    (check's warning of a xacro argument no file names reads them: a hit said nothing)."""
+    cache_dir = tmp_path / "cache"
+    first = check_paths([str(robot)], cache_dir=cache_dir, timeout=0, max_memory="0", jobs=1)
+    checked = _counting_checks(monkeypatch)
+    again = check_paths([str(robot)], cache_dir=cache_dir, timeout=0, max_memory="0", jobs=1)
+    assert checked == []
+    assert set(again.results[0].read) == set(first.results[0].read)
+    assert any(path.endswith("parts.xacro") for path in again.results[0].read)

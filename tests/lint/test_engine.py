@@ -471,3 +471,15 @@ def test_a_call_refused_at_the_memory_cap_stops_the_piece_as_over_its_memory(mon
     [result] = check_files([str(ROBOT)], lambda path: CheckOptions(), jobs=1, timeout=60,
                            memory=4 << 30)  # (in a forked worker, the memory capped)
     assert [f.code for f in result.findings] == ["U018"], [str(f) for f in result.findings]
+
+
+def test_an_empty_robot_name_is_no_refusal_of_urdfdom_and_a_missing_one_is(tmp_path):
+    """urdfdom refuses ``<robot>`` without a name and takes ``name=""`` (check_urdf: "robot
+    name is: "); U011 finds both, but only the first is a refusal, which every command that
+    poses a robot stops at (tree and fk refused the empty name, exit 1, as if urdfdom had)."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name=""><link name="a"/></robot>')
+    assert engine.urdfdom_refusals(load(str(path))) == []
+    assert [f.code for f in load_and_check(str(path), CheckOptions()).findings] == ["U011"]
+    path.write_text('<robot><link name="a"/></robot>')
+    assert [f.code for f in engine.urdfdom_refusals(load(str(path)))] == ["U011"]

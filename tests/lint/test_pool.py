@@ -246,10 +246,13 @@ def test_a_piece_that_runs_out_in_a_worker_others_filled_runs_again_afresh(monke
     more to a fresh worker: only there is the verdict (U900, U018) its own."""
     monkeypatch.setattr(pool.budgets, "grown", lambda size, born: False)  # the worker never retires
     start = address_space()
-    budget = Budget(60.0, 2 * (start + 100 * MB))  # half: what the first piece leaves
+    # the worker starts at the size of this process: a fresh one leaves 250 MB, the one the
+    # first piece filled 150 MB (a second piece the size of this process, as before, had the
+    # test write 1-3 GB of zeros: 3.4 s of CPU)
+    budget = Budget(60.0, start + 250 * MB)
 
     def work(index):  # the second fits alone, not after the first
-        return _keep(100 * MB if index == 0 else start + 150 * MB)
+        return _keep(100 * MB if index == 0 else 200 * MB)
 
     pids = run_budgeted(2, work, budget, lambda _, stop: stop, jobs=1)
     assert all(isinstance(pid, int) for pid in pids), pids

@@ -436,18 +436,108 @@ def test_a_robot_without_a_moving_joint_has_no_gravity_load(tmp_path, run_cli):
     assert document["gravity_loads"] == []
 
 
-def test_a_joint_dynamics_refuses_is_named_at_its_line(tmp_path, run_cli):
-    """A floating joint below the base (not the robot's own free base: a camera on a free
-    mount) is refused at its line, as every refusal is; it was 'robot.urdf: error: ...', no
-    line, nor the joint's type."""
+def test_a_floating_joint_below_the_base_is_modelled_as_its_free_flyer(tmp_path):
+    """A floating joint below a base with a mass (a camera on a free mount) was refused ('is
+    floating, of 6 degrees of freedom'); Pinocchio models it as a free flyer, and so does
+    dynamics, its rows named as fk names them. Oracle: the camera alone under dynamics'
+    --floating root (the path already held to Pinocchio), 0.3 m further along x: its local
+    twist, M, C, G and tau are the same."""
     path = tmp_path / "flying.urdf"
-    path.write_text(RIGID.replace('<joint name="cam_joint" type="fixed">',
-                                  '<joint name="cam_joint"\n type="floating">'))
-    result = run_cli("dynamics", path)
-    assert result.exit_code == 1
-    assert f"{path}:7: error: joint 'cam_joint' is floating, of 6 degrees of freedom" in \
-        result.stderr
-    assert "Traceback" not in result.output + result.stderr
+    path.write_text(RIGID.replace('type="fixed"', 'type="floating"'))
+    model = build(load(path))
+    assert model.root is None and model.joints == [f"cam_joint.{c}" for c in
+                                                   ("x", "y", "z", "roll", "pitch", "yaw")]
+    alone = tmp_path / "cam.urdf"
+    alone.write_text('<robot name="cam"><link name="cam"><inertial><mass value="0.1"/><inertia '
+                     'ixx="0.001" iyy="0.001" izz="0.001" ixy="0" ixz="0" iyz="0"/></inertial>'
+                     '</link></robot>')
+    free = build(load(alone), floating=True)
+    pose, twist, accel = [0.1, -0.2, 0.5, 0.4, -0.3, 1.2], [0.5, -0.1, 0.2, 0.3, -0.6, 0.9], \
+        [0.2, 0.1, -0.3, 0.5, 0.0, -0.4]
+    shifted = [pose[0] + 0.3, *pose[1:]]
+    mine = state(model, dict(zip(model.joints, pose)), dict(zip(model.joints, twist)),
+                 dict(zip(model.joints, accel)))
+    theirs = state(free, dict(zip(free.joints, shifted)), dict(zip(free.joints, twist)),
+                   dict(zip(free.joints, accel)))
+    for matrix in ("M", "G", "C", "tau"):
+        assert np.allclose(getattr(mine, matrix), getattr(theirs, matrix), atol=1e-12), matrix
+    assert mine.kinetic == pytest.approx(theirs.kinetic) and mine.rnea_residual < 1e-12
+
+
+# a tilted planar base carrying an arm, and the same motion as a chain of one-variable joints:
+# travel along x, travel along y, a turn about z (massless links between)
+PLANAR = """<robot name="planar">
+  <link name="world"/>
+  <link name="base"><inertial><mass value="2"/><origin xyz="0.1 0.05 0"/>
+    <inertia ixx="0.1" iyy="0.2" izz="0.3" ixy="0.01" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.4 0.3 0.1"/></geometry></collision></link>
+  <link name="arm"><inertial><mass value="1"/><origin xyz="0 0.2 0.05"/>
+    <inertia ixx="0.01" iyy="0.02" izz="0.03" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  {base}
+  <joint name="elbow" type="revolute"><parent link="base"/><child link="arm"/>
+    <origin xyz="0.2 0 0.1"/><axis xyz="1 0 0"/>
+    <limit lower="-2" upper="2" effort="10" velocity="1"/></joint>
+</robot>"""
+PLACED = '<origin xyz="0.1 -0.2 0.3" rpy="0.3 -0.2 0.1"/>'
+PLANE = (f'<joint name="slide" type="planar"><parent link="world"/><child link="base"/>{PLACED}'
+         '<axis xyz="0 0 1"/></joint>')
+CHAIN = ('<link name="m1"/><link name="m2"/>'
+         f'<joint name="px" type="prismatic"><parent link="world"/><child link="m1"/>{PLACED}'
+         '<axis xyz="1 0 0"/><limit lower="-9" upper="9" effort="1" velocity="1"/></joint>'
+         '<joint name="py" type="prismatic"><parent link="m1"/><child link="m2"/>'
+         '<axis xyz="0 1 0"/><limit lower="-9" upper="9" effort="1" velocity="1"/></joint>'
+         '<joint name="pyaw" type="continuous"><parent link="m2"/><child link="base"/>'
+         '<axis xyz="0 0 1"/></joint>')
+
+
+def test_a_planar_joint_is_its_x_y_yaw_against_a_chain_of_the_same_motion(tmp_path):
+    """A planar joint was refused ('is planar, of 3 degrees of freedom'); Pinocchio models it
+    (JointModelPlanar, q = x, y, cos yaw, sin yaw). Its variables are fk's, NAME.x, .y, .yaw;
+    its velocity the child's twist in its own frame. Oracle: the same motion as prismatic x,
+    prismatic y, revolute z, whose rates are T v (the twist's x, y turned by yaw into the
+    plane's axes): M = T^T M' T, G = T^T G', tau = T^T tau' at rest, K equal."""
+    (tmp_path / "plane.urdf").write_text(PLANAR.format(base=PLANE))
+    (tmp_path / "chain.urdf").write_text(PLANAR.format(base=CHAIN))
+    plane, chain = build(load(tmp_path / "plane.urdf")), build(load(tmp_path / "chain.urdf"))
+    assert plane.joints == ["slide.x", "slide.y", "slide.yaw", "elbow"]
+    assert chain.joints == ["px", "py", "pyaw", "elbow"]
+    x, y, yaw, elbow = 0.4, -0.7, 2.2, 0.6
+    turn = np.array([[math.cos(yaw), -math.sin(yaw)], [math.sin(yaw), math.cos(yaw)]])
+    T = np.eye(4)
+    T[:2, :2] = turn
+    twist, accel = np.array([0.3, -0.5, 0.8, 1.1]), np.array([0.2, 0.4, -0.6, 0.9])
+    mine = state(plane, dict(zip(plane.joints, (x, y, yaw, elbow))),
+                 dict(zip(plane.joints, twist)), dict(zip(plane.joints, accel)))
+    theirs = state(chain, dict(zip(chain.joints, (x, y, yaw, elbow))),
+                   dict(zip(chain.joints, T @ twist)))
+    assert np.allclose(mine.M, T.T @ theirs.M @ T, atol=1e-12)
+    assert np.allclose(mine.G, T.T @ theirs.G, atol=1e-12)
+    assert mine.kinetic == pytest.approx(theirs.kinetic, abs=1e-12)
+    assert mine.potential == pytest.approx(theirs.potential) and mine.rnea_residual < 1e-12
+    still = state(plane, dict(zip(plane.joints, (x, y, yaw, elbow))), {},
+                  dict(zip(plane.joints, accel)))
+    at_rest = state(chain, dict(zip(chain.joints, (x, y, yaw, elbow))), {},
+                    dict(zip(chain.joints, T @ accel)))
+    assert np.allclose(still.tau, T.T @ at_rest.tau, atol=1e-12)
+
+
+def test_a_planar_joints_coordinates_are_held_by_the_gravity_margins(tmp_path, run_cli):
+    """They have no range: drawn 1 m out and climbed to 3 m, a floating object made the arm
+    carrying it "unable to hold". Held at 0 in every pose, said once; the arm's margin is over
+    its own range; the planar rows are not judged (no effort limit)."""
+    path = tmp_path / "plane.urdf"
+    path.write_text(PLANAR.format(base=PLANE))
+    result = run_cli("dynamics", path, "--samples", "20", "-f", "json")
+    assert result.exit_code == 0, result.output
+    loads = {load["joint"]: load for load in json.loads(result.stdout)["gravity_loads"]}
+    assert [name for name, load in loads.items() if load["judged"]] == ["elbow"]
+    assert all(load["worst_pose"].get(f"slide.{c}", 0.0) == 0.0
+               for load in loads.values() for c in ("x", "y", "yaw"))
+    assert "'slide.x', 'slide.y', 'slide.yaw' have no range (the coordinates of a planar or " \
+        "floating joint): held at 0" in result.stderr
+    stood = run_cli("dynamics", path, "--support", "base", "--q", "slide.yaw=0.5")
+    assert stood.exit_code in (0, 1) and "Traceback" not in stood.output, stood.output
+    assert "slide.yaw" in stood.stdout
 
 
 def _own_free_base(text: str) -> str:

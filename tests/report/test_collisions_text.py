@@ -19,7 +19,7 @@ def test_pose_text_names_the_srdf_forbidden_pairs_and_visual_only_links():
     stream = io.StringIO()
     render.pose_text("bot", _report("config/bot.srdf"), custom=True, stream=stream)
     text = stream.getvalue()
-    assert text.startswith("bot at the given configuration (1 joints), SRDF: config/bot.srdf\n")
+    assert text.startswith("bot at the given configuration (1 joint), SRDF: config/bot.srdf\n")
     assert "COLLIDING" in text and "1 adjacent pair(s) overlap at their joints (allowed): a/b" \
         in text
     assert "250.00" in text and "disabled (User)" in text

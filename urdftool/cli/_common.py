@@ -133,14 +133,22 @@ def _error_document(results=(), message=None, location=None) -> None:
         show(dumps(error_document(results, message, location)))
 
 
-def fail_at(robot, error: Exception) -> None:
-    """Print ``error`` where it is (its ``where``, else its ``element`` in ``robot``, else the
-    robot's file) and exit 1; a name given on the command line that the robot does not have
-    (an :class:`~urdftool.errors.UnknownName`) is a usage error, exit 2, in every command."""
-    from urdftool.errors import UnknownName
-
-    if isinstance(error, UnknownName):
-        fail_usage(error)
+def fail_at(robot, error: Exception, option: str | None = None) -> None:
+    """End the command on ``error`` by whose it is (its ``asked``: the one place every command
+    decides it, :class:`~urdftool.errors.UrdftoolError`). The question's (a name the robot
+    does not have, a tip not below its base, a limb or chain no joint moves or that runs
+    through a joint the computation does not take, a D-H table that cannot be read or does not
+    fit the robot) is a usage error in every command: one line, exit 2, the place first when
+    there is one (the table's file and row; the joint of the robot it is about). The robot's is printed where it is (its ``where``, else its
+    ``element`` in ``robot``, else the robot's file), exit 1. (dh, ik and workspace exited 1
+    for "swap --base and --tip" and "no joint moves 'a'", 2 for a link that does not exist.)
+    ``option``: the option that asked (``--chain``), named first in a usage error."""
+    if getattr(error, "asked", False):
+        text, element = str(error), getattr(error, "element", None)
+        where = getattr(error, "where", None) or (robot.locate(element) if element is not None
+                                                  else None)
+        text = f"{where}: {text}" if where and not text.startswith(f"{where}:") else text
+        fail_usage(UsageError(f"{option}: {text}" if option else text))
     where = getattr(error, "where", None) or robot.locate(getattr(error, "element", None))
     say(f"{where}: error: {error}", err=True)
     _error_document(message=str(error), location=where)
@@ -203,11 +211,29 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     except UsageError as error:
         fail_usage(error)
     robot = load_robot(paths[0], args, packages, **load_options)
+    warn_unnamed_arguments(robot, args)
     if not robot.links and command != "xacro":  # a macro library expands to no link: xacro's
         _refuse_linkless(robot)
     if command in POSING:
         refuse_refused(robot, posing=True)
     return robot
+
+
+def warn_unnamed_arguments(robot, args: dict[str, str]) -> None:
+    """A warning for each xacro argument given (``--arg NAME=VALUE``, ``NAME:=VALUE``) that
+    no file of the robot names: xacro takes it and it changes nothing (a misspelt name
+    computed the defaults without a word)."""
+    from urdftool.description.xacro_text import argument_warnings
+    from urdftool.errors import listed
+
+    if not args:
+        return
+    if not robot.from_xacro:
+        warn([f"xacro argument{'s' * (len(args) > 1)} {listed(args)} given, but "
+              f"{robot.display} is read as URDF, not expanded by xacro: "
+              f"{'they change' if len(args) > 1 else 'it changes'} nothing"])
+        return
+    warn(argument_warnings(robot.sources, args, "the robot"))
 
 
 # the commands that pose the robot (a model of its joints and links: Pinocchio's, yourdfpy's,

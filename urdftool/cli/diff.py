@@ -121,7 +121,7 @@ def _compare(old, new, options, chains, output_format, output, drawing) -> int:
     except UsageError as error:
         fail_usage(error)
     except UnknownName as error:
-        fail_usage(UsageError(f"--chain: {error}"))
+        fail_at(new, error, "--chain")
     except FKError as error:
         fail_at(new, error)
     warn(result.warnings + (result.effects.warnings if result.effects is not None else []))

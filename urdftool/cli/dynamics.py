@@ -57,7 +57,7 @@ def dynamics(
     arg: list[str] = XacroArgOption,
     package: list[str] = PackageOption,
 ) -> None:
-    from urdftool.errors import OverLimit
+    from urdftool.errors import OverLimit, UnknownLink
     from urdftool.kinematics.configuration import ConfigError, joint_values
     from urdftool.physics.dynamics import DynamicsError, build, gravity_variables, state
     from urdftool.physics.gravity_bound import worst_loads
@@ -76,10 +76,20 @@ def dynamics(
                                                      "(the gravity margins hold the base fixed; "
                                                      "a free base stands with --support)")])
     refuse_bad_outputs(plot, inputs=words)
-    try:
+    try:  # the question before the robot: a --support that names no link is the user's
+        UnknownLink.unless_among(support, robot.links)
         model = build(robot, floating=floating)
-    except DynamicsError as error:
+    except (DynamicsError, UnknownLink) as error:
         fail_at(robot, error)
+    if samples:
+        from urdftool.errors import listed
+        from urdftool.physics.dynamics import held_coordinates
+
+        held = [model.variables[k].name for k in held_coordinates(model)]
+        if held:
+            warn([f"{listed(held)} {'has' if len(held) == 1 else 'have'} no range (the "
+                  "coordinates of a planar or floating joint): held at 0 in every pose "
+                  "--samples draws; the margins are over the ranges of the other joints"])
     given = {name: joint_words(values, f"--{name}") for name, values in (("q", q), ("v", v),
                                                                          ("a", a))}
     try:

@@ -59,7 +59,8 @@ def ik(
     iterations: int = typer.Option(100, "--iterations", metavar="N",
                                    help="Iterations per starting point."),
     method: str = typer.Option("auto", "--method",
-                               help="auto (closed form for planar 2-3 joint limbs, else "
+                               help="auto (closed form for planar 2-3 joint limbs and 6-joint "
+                                    "arms with a spherical wrist, else "
                                     "numeric), numeric or closed-form."),
     output_format: str = typer.Option("text", "--format", "-f", help="text, json or csv."),
     arg: list[str] = XacroArgOption,
@@ -98,6 +99,14 @@ def ik(
         fail_at(robot, error)
     warn(found.warnings)
     chain, solutions = found.chain, found.solutions
+    numeric = sum(s.method != "closed form" for s in solutions)
+    if method == "closed-form" and numeric:
+        which = "the target was" if len(solutions) == 1 else \
+            f"{numeric} of {len(solutions)} targets were"
+        warn([f"--method closed-form: {which} solved numerically: the closed form takes a "
+              "planar limb of 2 parallel revolute joints (3 given an orientation), or a 6-joint "
+              "arm with a spherical wrist given an orientation, and a branch of it within the "
+              "limits"])
     if output_format == "json":
         from urdftool.report.json_output import write_json
 

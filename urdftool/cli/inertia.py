@@ -6,9 +6,8 @@ from pathlib import Path
 
 import typer
 
-from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_usage,
+from urdftool.cli._common import (PackageOption, XacroArgOption, budgeted, fail_at,
                                   only_with, refuse_bad_outputs, say, show, single_robot, write_output)
-from urdftool.errors import UsageError
 
 
 FORMATS = ("text", "json")
@@ -54,7 +53,7 @@ def inertia(
     try:
         results = compare(robot, density=density, links=link or None)
     except UnknownLink as error:
-        fail_usage(UsageError(str(error)))
+        fail_at(robot, error)
     if write is not None:
         from urdftool.description.files import identity
         from urdftool.lint.fixes import inertia_rewrite

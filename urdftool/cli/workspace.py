@@ -56,6 +56,13 @@ def workspace(
     except (FKError, IKError, UnknownName) as error:
         fail_at(robot, error)
     warn(start.warnings)
+    if chain.held:
+        from urdftool.errors import listed
+
+        what = ("the limb cannot move: its workspace is one point"
+                if len(chain.held) == len(chain.variables) else "held there in every sample")
+        warn([f"{listed(chain.held)} {'has' if len(chain.held) == 1 else 'have'} no range "
+              f"(lower = upper): {what}"])
     from urdftool.report.progress import sampling_progress
 
     try:

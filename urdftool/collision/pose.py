@@ -60,6 +60,7 @@ class PoseReport:
     problems: list = field(default_factory=list)
     srdf: str | None = None
     warnings: list[str] = field(default_factory=list)
+    joints: int | None = None  # the joints ``q`` sets (a planar joint's 3 coordinates: one)
 
     @property
     def forbidden(self) -> list[Contact]:
@@ -123,4 +124,5 @@ def check(scene, q: np.ndarray, allowed: dict[tuple[str, str], str], closest: in
                    key=lambda c: c.distance)
     values = {v.name: float(x) for v, x in zip(scene.variables, q)}
     return PoseReport(values, colliding, apart[:closest], scene.geometry.visual_only,
-                      scene.geometry.problems, srdf)
+                      scene.geometry.problems, srdf,
+                      joints=len({variable.joint for variable in scene.variables}))

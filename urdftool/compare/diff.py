@@ -76,7 +76,18 @@ def chain_ends(text: str, links) -> tuple[str, str]:
     at the first one with a link on one side, else at the first one, so that the unknown end
     is the one reported (``arm:base:arm:hnd``: 'arm:hnd', not 'arm'). UsageError when
     there is no ':', an end is empty, or two ':' name existing links (``a:b:c`` with links
-    ``a``, ``b:c``, ``a:b`` and ``c``)."""
+    ``a``, ``b:c``, ``a:b`` and ``c``), or the chain is one link at both ends (its reach is 0
+    on both sides: compared as "equal", where ik and workspace refuse a limb no joint moves)."""
+    from urdftool.errors import UsageError
+
+    ends = _split_chain(text, links)
+    if ends[0] == ends[1]:
+        raise UsageError(f"--chain '{text}' names link '{ends[0]}' at both ends: a chain runs "
+                         "between two links")
+    return ends
+
+
+def _split_chain(text: str, links) -> tuple[str, str]:
     from urdftool.errors import UsageError
 
     splits = [(text[:at], text[at + 1:]) for at, char in enumerate(text) if char == ":"]

@@ -185,10 +185,11 @@ DIFF_DRIVE = ("diff_drive", "diff-drive", "DiffDrive")
 WHEEL_JOINT_TAGS = ("leftJoint", "rightJoint", "left_joint", "right_joint")
 
 
-def gazebo_plugins(robot):
-    """Every ``<plugin>`` inside a ``<gazebo>`` block."""
-    for gazebo in robot.children("gazebo"):
-        yield from gazebo.iter("plugin")
+def gazebo_plugins(robot) -> tuple:
+    """Every ``<plugin>`` inside a ``<gazebo>`` block, in document order; once per robot (a
+    dozen rules and loaders ask, and each search walked every block to its leaves)."""
+    return robot.memo(gazebo_plugins, lambda: tuple(
+        plugin for gazebo in robot.children("gazebo") for plugin in gazebo.iter("plugin")))
 
 
 def diff_drive_plugins(robot):

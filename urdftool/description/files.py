@@ -537,6 +537,12 @@ def inside(path, folder) -> bool:
         base = real_path(os.fspath(folder))
     except (OSError, ValueError):
         return False
+    return real_inside(real, base)
+
+
+def real_inside(real: str, base: str) -> bool:
+    """:func:`inside` of paths whose links were followed already (:func:`real_path`'s
+    answers): whether ``real`` is ``base`` or below it."""
     return real == base or real.startswith(base.rstrip(os.sep) + os.sep)
 
 

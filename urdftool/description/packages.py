@@ -295,7 +295,16 @@ def package_of(path) -> Path | None:
     is where the file is named). (launch_configs.launch_file_packages answers it for every
     launch file of a repository from the launch walk's listings: this function asked of each
     cost 18 M instructions of r2d2's 560 M, session 20.)"""
-    start = Path(os.path.abspath(path)).parent
+    return _package_at_or_above(os.path.dirname(os.path.abspath(path)))
+
+
+@per_run
+def _package_at_or_above(where: str) -> Path | None:
+    """:func:`package_of` of the files in the folder ``where``, once per run: three steps of a
+    check ask it of each robot file (the package rule, the build tools, the launch files that
+    may run it), and the robots of a corpus share folders (its 46 URDFs lie in 22: 140
+    questions)."""
+    start = Path(where)
     root = containment_root(start)
     for folder in [start, *start.parents]:
         if any(kind_of(folder / name) == "file" and inside(folder / name, root)

@@ -126,6 +126,43 @@ def arg_defaults(data: bytes) -> dict[str, str]:
             for name, value in _ARG_DEFAULT.findall(data)}
 
 
+def unnamed_arguments(sources, args: dict[str, str]) -> dict[str, list[str]]:
+    """The xacro arguments of ``args`` that no file of ``sources`` (the bytes of every file
+    expanded, :attr:`Robot.sources`) names, each with the arguments the files declare whose
+    names are close: an argument is read by ``$(arg NAME)``, ``arg('NAME')`` in ``$(eval)`` or
+    declared by ``<xacro:arg name="NAME">``, all of which write its name, so one whose name
+    is in no file changes nothing (xacro takes it without a word: ``lenght:=2`` for
+    ``length``)."""
+    from urdftool.errors import close_names
+
+    texts = [data.decode("utf-8", "replace") for data in sources.values()]
+    unnamed = [name for name in args
+               if not any(re.search(rf"(?<![\w-]){re.escape(name)}(?![\w-])", text)
+                          for text in texts)]
+    if not unnamed:
+        return {}
+    declared = sorted({name.decode("utf-8", "replace") for data in sources.values()
+                       for name, _ in _ARG_DEFAULT.findall(data)})
+    return {name: close_names(name, declared) for name in unnamed}
+
+
+def argument_warnings(sources, args: dict[str, str], whose: str) -> list[str]:
+    """A warning for each xacro argument of ``args`` (``--arg NAME=VALUE``, ``NAME:=VALUE``)
+    that no file of ``sources`` names (:func:`unnamed_arguments`), with the declared names
+    close to it: xacro takes it and it changes nothing (``--arg lenght=2`` computed the
+    defaults without a word). ``whose``: what the files are, as the warning says it ("the
+    robot", "the 3 robots checked"). The one wording of the robot commands and of check."""
+    from urdftool.errors import listed
+
+    warnings = []
+    for name, close in unnamed_arguments(sources, args).items():
+        hint = f"; did you mean {listed(close)}?" if close else ""
+        warnings.append(f"xacro argument '{name}' ({name}:={args[name]}) is named by no file "
+                        f"of {whose} (no <xacro:arg name=\"{name}\">, no $(arg {name})): it "
+                        f"changes nothing{hint}")
+    return warnings
+
+
 def resolved_spec(path: Path, spec: str, defaults: dict[str, str],
                    resolver: PackageResolver) -> Path | None:
     """The file ``spec``, written in ``path``, names, or None when it needs what is only

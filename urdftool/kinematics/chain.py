@@ -56,6 +56,12 @@ class Chain:
         """Which of ``x`` are continuous joints (wrapped to (-pi, pi])."""
         return np.array([v.kind == "continuous" for v in self.variables], dtype=bool)
 
+    @property
+    def held(self) -> list[str]:
+        """The limb's variables of no range (``lower = upper``: double_pendulum_simple's
+        ``<limit lower="0" upper="0">``): they stay at that value in every pose."""
+        return [v.name for v in self.variables if not v.upper - v.lower > 0]
+
     def x_of(self, row: np.ndarray) -> np.ndarray:
         """The limb's coordinates in a full variable row."""
         return np.asarray(row, dtype=float)[self.columns].copy()
@@ -173,8 +179,8 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
     """The limb from ``base`` (default: the root link) to ``tip``; the variables off the limb
     stay at ``row`` (default: each variable's default); ``point`` [m] in the tip's frame is the
     point placed instead of the tip's origin (a hand's palm on a forearm link). UnknownLink for
-    an unknown link (a name given by the user: a usage error in every command), IKError for a
-    limb without a moving joint, ConfigError (argument ``point``) for a point whose coordinates
+    an unknown link, IKError for a limb without a moving joint or through a joint of more than
+    one variable (each the question's, ``asked``: a usage error in every command), ConfigError (argument ``point``) for a point whose coordinates
     the solver and the workspace's reach and manipulability cannot square
     (:data:`urdftool.numbers.SQUARABLE`, as ik's targets: ``--point 1e308 0 0`` was numpy's
     overflow warnings and a reach of inf m)."""
@@ -194,14 +200,14 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
                 for name in (base, tip)}
     path = supports[base] ^ supports[tip]
     if not path:
-        raise IKError(f"no joint moves '{tip}' relative to '{base}'")
+        raise IKError(f"no joint moves '{tip}' relative to '{base}'", asked=True)
     for joint in sorted(path):
         if full.joints[joint].nv != 1:
             name = full.names[joint]
             raise IKError(f"joint '{name}' between '{base}' and '{tip}' is "
                           f"{robot.joints[name].get('type')}: a limb is made of revolute, "
                           "continuous and prismatic joints (choose a --base below it)",
-                          robot.joints.get(name))
+                          robot.joints.get(name), asked=True)
     locked = [j for j in range(1, full.njoints) if j not in path]
     reference = kinematics.pinocchio_q(row)[0]
     model = reduced_model(full, locked, reference) if locked else full.copy()

@@ -125,7 +125,7 @@ def chain(robot, base: str, tip: str) -> list:
             if base != tip and _is_below(parent_joint, base, tip):
                 hint = f"; '{base}' is below '{tip}': swap --base and --tip"
             raise DHError(f"link '{tip}' is not below link '{base}': a D-H chain runs from a "
-                          f"link down to one of its descendants{hint}")
+                          f"link down to one of its descendants{hint}", asked=True)
         joints.append(joint)
         link = joint.find("parent").get("link")
     return joints[::-1]
@@ -159,7 +159,7 @@ def _refuse_joints_without_form(joints) -> None:
     more = "" if not others else (
         f"; {len(others)} more joint(s) of the chain have none: "
         + ", ".join(f"'{joint.get('name')}' ({kind})" for joint, _, kind, _ in others))
-    raise DHError(f"joint '{first.get('name')}' {what}: {why}{more}", first)
+    raise DHError(f"joint '{first.get('name')}' {what}: {why}{more}", first, asked=True)
 
 
 def extract(robot, base: str, tip: str, convention: str = "standard",
@@ -167,7 +167,8 @@ def extract(robot, base: str, tip: str, convention: str = "standard",
     """The D-H table of the chain ``base`` -> ``tip`` with its base and tool transforms;
     ``textbook``: every link length ``a >= 0`` (:func:`textbook_form`)."""
     if convention not in CONVENTIONS:
-        raise DHError(f"unknown convention '{convention}'; use one of {', '.join(CONVENTIONS)}")
+        raise DHError(f"unknown convention '{convention}'; use one of {', '.join(CONVENTIONS)}",
+                      asked=True)
     joints = chain(robot, base, tip)
     moving = []  # (element, type, point, direction) in base-link coordinates at zero
     pose = np.eye(4)
@@ -180,7 +181,7 @@ def extract(robot, base: str, tip: str, convention: str = "standard",
             moving.append((joint, "prismatic" if kind == "prismatic" else "revolute",
                            pose[:3, 3].copy(), axis))
     if not moving:
-        raise DHError(f"no revolute or prismatic joint between '{base}' and '{tip}'")
+        raise DHError(f"no revolute or prismatic joint between '{base}' and '{tip}'", asked=True)
     frames = (_standard_frames if convention == "standard" else _modified_frames)(moving, pose)
     rows, residual, tolerance = [], 0.0, _tolerance(*frames, pose)
     for i, (joint, kind, _, _) in enumerate(moving):
@@ -482,7 +483,7 @@ def table_columns(table: DHTable, model) -> list[int]:
     for joint in table.joints:
         if joint.joint not in columns:
             raise DHError(f"D-H table joint '{joint.joint}' is not a joint of the robot; "
-                          + available("joints", joint.joint, columns))
+                          + available("joints", joint.joint, columns), asked=True)
         result.append(columns[joint.joint])
     return result
 
@@ -493,11 +494,11 @@ def table_links(table: DHTable, base: str | None, tip: str | None) -> tuple[str,
                                                                       table.tip_link)):
         if given and named and given != named:
             raise DHError(f"the D-H table's chain is {table.base_link} -> {table.tip_link}; "
-                          f"{option} {given} names another link (leave it out)")
+                          f"{option} {given} names another link (leave it out)", asked=True)
     base, tip = table.base_link or base, table.tip_link or tip
     if not base or not tip:
         raise DHError("the D-H table does not name its base_link and tip_link: pass --base LINK "
-                      "and --frame LINK")
+                      "and --frame LINK", asked=True)
     return base, tip
 
 

@@ -282,16 +282,7 @@ class KinematicModel:
                 return (coefficients @ joint.stacked).reshape(rows, 4, 4)
             np.matmul(coefficients, joint.stacked, out=out.reshape(rows, 16))
             return out
-        motion = np.zeros((rows, 4, 4))
-        motion[:, 3, 3] = 1.0
-        if joint.kind == "floating":
-            coordinates = values[:, list(joint.source)]
-            motion[:, :3, :3] = transforms.rotation_from_rpy(coordinates[:, 3:])
-            motion[:, :3, 3] = coordinates[:, :3]
-        else:  # planar: x, y in the joint frame's xy plane, yaw about its z
-            x, y, yaw = (values[:, c] for c in joint.source)
-            motion[:, :3, :3] = transforms.rotations_about((0.0, 0.0, 1.0), yaw)
-            motion[:, 0, 3], motion[:, 1, 3] = x, y
+        motion = coordinates_motion(joint.kind, values[:, list(joint.source)])
         return np.matmul(joint.placement, motion, out=out)
 
     def pinocchio_q(self, values: np.ndarray) -> np.ndarray:
@@ -316,6 +307,24 @@ class KinematicModel:
                 x, y, yaw = (values[:, c] for c in joint.source)
                 q[:, start:start + 4] = np.stack([x, y, np.cos(yaw), np.sin(yaw)], -1)
         return q
+
+
+def coordinates_motion(kind: str, coordinates: np.ndarray) -> np.ndarray:
+    """The motions ``[rows, 4, 4]`` of a joint of several variables in its own frame from its
+    coordinates ``[rows, n]``: a floating joint's x, y, z [m] and roll, pitch, yaw [rad]
+    (fixed axes, as URDF's rpy); a planar joint's x, y [m] in its frame's xy plane and yaw
+    [rad] about its z (Pinocchio's ``JointModelPlanar``). The one owner of both motions: fk's
+    poses and render's scene."""
+    coordinates = np.atleast_2d(np.asarray(coordinates, dtype=float))
+    motion = np.zeros((len(coordinates), 4, 4))
+    motion[:, 3, 3] = 1.0
+    if kind == "floating":
+        motion[:, :3, :3] = transforms.rotation_from_rpy(coordinates[:, 3:])
+        motion[:, :3, 3] = coordinates[:, :3]
+    else:
+        motion[:, :3, :3] = transforms.rotations_about((0.0, 0.0, 1.0), coordinates[:, 2])
+        motion[:, :2, 3] = coordinates[:, :2]
+    return motion
 
 
 class _Scratch:

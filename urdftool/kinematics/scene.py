@@ -9,8 +9,10 @@ containment, size and triangle limits, no textures) and added to the link's node
 leads outside the robot's repository or packages.
 
 Joint values are urdftool's variables (:mod:`urdftool.kinematics.configuration`): revolute,
-continuous and prismatic joints, mimic joints following theirs. yourdfpy draws floating and
-planar joints at their origin.
+continuous and prismatic joints, mimic joints following theirs, and the coordinates of floating
+and planar joints (``NAME.x``, ...), which urdftool places itself (``fk.coordinates_motion``):
+yourdfpy counts a planar joint as 2 values and a floating one as 3 or 6, and drew both at their
+origin whatever ``--q`` said.
 """
 
 from __future__ import annotations
@@ -61,7 +63,8 @@ class SceneModel:
     """A robot's visual (or collision) geometry in yourdfpy's scene graph, posed on demand."""
 
     def __init__(self, robot, collision: bool = False):
-        from urdftool.kinematics.configuration import mimics_of, variables_of
+        from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES,
+                                                       mimics_of, variables_of)
 
         self.robot = robot
         self.collision = collision
@@ -74,6 +77,10 @@ class SceneModel:
                           if v.kind in MOVING]
         self.all_variables = variables_of(robot)
         self.mimics = mimics_of(robot)
+        # the joints of several variables (yourdfpy's joints, with their coordinates' names)
+        self._multiple = [(joint, FLOATING_COORDINATES if joint.type == "floating"
+                           else PLANAR_COORDINATES) for joint in self.urdf.robot.joints
+                          if joint.type in ("floating", "planar") and joint.mimic is None]
         self._nodes = [(node, self.scene.graph.transforms.parents[node])
                        for node in self.scene.graph.nodes_geometry]
         self.links = list(dict.fromkeys(link for _, link in self._nodes))
@@ -150,6 +157,7 @@ class SceneModel:
         import numpy as np
 
         from urdftool.errors import OverLimit
+        from urdftool.kinematics.fk import coordinates_motion
 
         if max_triangles is not None and self.triangle_count > max_triangles:
             raise OverLimit("the robot's geometry, every instance of a mesh counted",
@@ -161,6 +169,12 @@ class SceneModel:
         if values:
             self.urdf.update_cfg(values)
         graph = self.scene.graph
+        for joint, coordinates in self._multiple:  # placed here, not by yourdfpy
+            pose = [float((q or {}).get(f"{joint.name}.{c}", 0.0)) for c in coordinates]
+            values.update({f"{joint.name}.{c}": x for c, x in zip(coordinates, pose)})
+            origin = joint.origin if joint.origin is not None else np.eye(4)
+            graph.update(frame_from=joint.parent, frame_to=joint.child,
+                         matrix=origin @ coordinates_motion(joint.type, [pose])[0])
         placed = _placements(graph)
         frames = {link.name: placed(link.name) for link in self.urdf.robot.links
                   if link.name in graph.nodes}

@@ -150,6 +150,15 @@ class Cache:
         self._verified[path, repr(options)] = depends
         return findings
 
+    def reads(self, path: str, options) -> tuple[str, ...]:
+        """The real paths of the files the check of ``path`` with ``options`` read, as kept
+        with its result (after a hit or a put; empty otherwise): what a worker returns for a
+        file it checks (:class:`~urdftool.lint.options.FileResult`'s ``read``)."""
+        from urdftool.description.record import READ
+
+        return tuple(entry[2] for entry in self._verified.get((path, repr(options)), ())
+                     if entry[0] == READ and entry[4] is not None)
+
     def get_run(self, paths: list[str], request) -> tuple[list, list[bool], list] | None:
         """The results (FileResult), their strictness and the record entries they depend on
         kept for checking ``paths`` with ``request``, or None. A run

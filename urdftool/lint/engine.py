@@ -44,6 +44,10 @@ URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
 # parent joints (U107), which urdfdom and Pinocchio hang under the joint whose name sorts last,
 # urdftool's kinematics and yourdfpy under neither (they stopped at it in their own words)
 POSING_REFUSES = URDFDOM_REFUSES | {"U107"}
+# ... but for what urdfdom takes under those codes, by what the robot holds: an empty
+# <robot name=""> (U011; check_urdf prints "robot name is: ", Pinocchio builds it), which every
+# command refused before as if urdfdom had
+URDFDOM_TAKES = {"U011": lambda robot: robot.root.get("name") == ""}
 _HINTS = {"too-large": lambda subject: " (raise it with --max-file-size)",
           "arg": lambda subject: f"; pass it as {subject}:=VALUE (or --arg {subject}=VALUE)"}
 
@@ -206,7 +210,9 @@ def urdfdom_refusals(robot, codes=URDFDOM_REFUSES) -> list[Finding]:
     empty when it would parse it. Inline suppressions do not apply: they cannot make urdfdom
     accept a file."""
     found = _run_rules(robot, codes.__contains__)
-    return sorted({f for f in found if f.severity.value == "error"}, key=Finding.sort_key)
+    taken = {code for code, takes in URDFDOM_TAKES.items() if code in codes and takes(robot)}
+    return sorted({f for f in found if f.severity.value == "error" and f.code not in taken},
+                  key=Finding.sort_key)
 
 
 # How the cyclic garbage collector runs around each check: (a context manager factory around a

@@ -81,7 +81,9 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
         return [stop_finding(named[todo[index]], stop, "checking")], [], (), None
 
     lines: list[list[str]] = [[] for _ in files]
-    read: list[tuple] = [() for _ in files]
+    # (a file the cache holds: what its check read, as a worker says it)
+    read: list[tuple] = [cache.reads(path, options_for(path)) if found is not None else ()
+                         for path, found in zip(files, kept)]
     checked = run_budgeted(len(todo), work, budget, stopped, jobs,
                            lambda done: finished(len(files) - len(todo) + done))
     for index, (found, companions, paths, unkept) in zip(todo, checked):

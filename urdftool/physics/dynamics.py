@@ -12,6 +12,14 @@ velocity and acceleration are Pinocchio's: the root link's twist in its own fram
 (``.x``, ``.y``, ``.z`` [m/s]) then angular (``.roll``, ``.pitch``, ``.yaw``: about its own x, y,
 z axes [rad/s], not rates of the angles); its rows of M(q), G(q), C(q, v) and tau are that
 frame's force [N] and moment [N m] on the base: what a floating robot's contacts must supply.
+
+A joint of several variables in the robot (``planar``; ``floating`` below a root with a mass)
+is modelled as Pinocchio reads it (``JointModelPlanar``, ``JointModelFreeFlyer``) and named as
+fk names it: a planar joint's ``NAME.x``, ``.y`` [m] in its frame's xy plane and ``.yaw``
+[rad] about its z (Pinocchio's q: x, y, cos yaw, sin yaw); its velocity and acceleration are
+Pinocchio's, the twist of its child in the child's own frame (``.x``, ``.y`` [m/s] along the
+child's axes, ``.yaw`` [rad/s]), and its rows are the force [N] and moment [N m] on it, with no
+effort limit to judge.
 """
 
 from __future__ import annotations
@@ -39,6 +47,31 @@ class Model:
     mimics: dict = field(default_factory=dict)  # joint -> (variable, multiplier, offset)
     root: str | None = None  # the free-flyer root joint's name, or None for a fixed base
     reductions: dict = field(default_factory=dict)  # joint -> its transmission's reduction
+    # the joints of several variables (the free root, planar and floating joints): joint ->
+    # its coordinate names, in Pinocchio's order of its velocity
+    multiple: dict = field(default_factory=dict)
+
+    def coordinate(self, name: str) -> tuple[str, int] | None:
+        """(joint, index in its velocity) of a row name of a joint of several variables
+        (``slide.yaw``: ('slide', 2)), or None for a joint of one."""
+        joint, dot, coordinate = name.rpartition(".")
+        names = self.multiple.get(joint) if dot else None
+        return (joint, names.index(coordinate)) if names and coordinate in names else None
+
+    def row(self, name: str) -> int:
+        """The velocity index (row of M(q), G(q), tau) of ``name``, a joint of one variable or
+        a coordinate of one of several (``slide.x``)."""
+        found = self.coordinate(name)
+        if found is not None:
+            return self.model.joints[self._joint_id(found[0])].idx_v + found[1]
+        return self.model.joints[self._joint_id(name)].idx_v
+
+    def linear(self, name: str) -> bool:
+        """Whether ``name``'s row is a travel [m] (a force [N]), not an angle (a moment)."""
+        found = self.coordinate(name)
+        if found is not None:
+            return name.rpartition(".")[2] in ("x", "y", "z")
+        return self.model.joints[self._joint_id(name)].shortname().startswith("JointModelP")
 
     def _expanded(self, values: dict[str, float], offsets: bool) -> dict[str, float]:
         """Variable values plus every mimic joint's (unnamed variables count as 0)."""
@@ -62,12 +95,12 @@ class Model:
         import pinocchio as pin
 
         q = pin.neutral(self.model)
-        if self.root:  # position, then the quaternion (x, y, z, w) of roll, pitch, yaw
-            pose = [values.get(f"{self.root}.{c}", 0.0) for c in FLOATING_COORDINATES]
-            q[:3] = pose[:3]
-            q[3:7] = pin.Quaternion(pin.rpy.rpyToMatrix(*pose[3:])).coeffs()
+        for name, coordinates in self.multiple.items():
+            start = self.model.joints[self._joint_id(name)].idx_q
+            block = coordinates_q([values.get(f"{name}.{c}", 0.0) for c in coordinates])
+            q[start:start + len(block)] = block
         for name, value in self._expanded(values, offsets=True).items():
-            if self.root and name.startswith(f"{self.root}."):
+            if self.coordinate(name) is not None:
                 continue
             joint = self.model.joints[self._joint_id(name)]
             if joint.nq == 2:  # continuous: (cos, sin)
@@ -80,15 +113,23 @@ class Model:
         """Pinocchio's v (or a) by name; a mimic joint moves at multiplier times its variable."""
         v = np.zeros(self.model.nv)
         for name, value in self._expanded(values, offsets=False).items():
-            if self.root and name.startswith(f"{self.root}."):  # the twist, in the root's order
-                v[FLOATING_COORDINATES.index(name[len(self.root) + 1:])] = value
-                continue
-            v[self.model.joints[self._joint_id(name)].idx_v] = value
+            v[self.row(name)] = value  # a coordinate of a joint of several: its twist's
         return v
 
 
+def coordinates_q(pose) -> np.ndarray:
+    """Pinocchio's q of a joint of several variables from its coordinates' values: a planar
+    joint's (x, y, yaw) as (x, y, cos yaw, sin yaw); a free flyer's (x, y, z, roll, pitch, yaw)
+    as its position and the quaternion (x, y, z, w) of roll, pitch, yaw."""
+    import pinocchio as pin
+
+    if len(pose) == 3:
+        return np.array([pose[0], pose[1], math.cos(pose[2]), math.sin(pose[2])])
+    return np.concatenate([pose[:3], pin.Quaternion(pin.rpy.rpyToMatrix(*pose[3:])).coeffs()])
+
+
 def build(robot, floating: bool = False) -> Model:
-    """A Pinocchio model of the robot (1-dof joints; planar/floating joints refused), its base
+    """A Pinocchio model of the robot (planar and floating joints as its coordinates), its base
     fixed, or with ``floating`` free: a free-flyer root joint ``root_joint`` (as ``fk
     --floating``), whose six velocity variables come first. A robot with its own free base
     (:func:`urdftool.kinematics.tree.own_free_base`) has that joint as its free root, named
@@ -97,7 +138,8 @@ def build(robot, floating: bool = False) -> Model:
     import pinocchio as pin
 
     from urdftool.errors import FKError
-    from urdftool.kinematics.configuration import MimicError, mimic_source, mimics_of, variables_of
+    from urdftool.kinematics.configuration import (PLANAR_COORDINATES, MimicError, mimic_source,
+                                                   mimics_of, variables_of)
     from urdftool.kinematics.fk import FLOATING_ROOT, placed_within
     from urdftool.kinematics.native import build_model
     from urdftool.kinematics.tree import own_free_base
@@ -114,19 +156,25 @@ def build(robot, floating: bool = False) -> Model:
     if own and not floating:  # its free flyer locked at the neutral pose: a fixed base
         model = pin.buildReducedModel(model, [model.getJointId(own)], pin.neutral(model))
     joints = [f"{root}.{c}" for c in FLOATING_COORDINATES] if floating else []
+    multiple = {root: FLOATING_COORDINATES} if floating else {}
     for joint_id in range(2 if floating else 1, model.njoints):
         axis = getattr(model.joints[joint_id].extract(), "axis", None)  # unaligned joints
         if axis is not None and not abs(np.linalg.norm(axis) - 1) <= 1e-6:
             raise DynamicsError(_axis_problem(robot.joints.get(model.names[joint_id]),
                                               model.names[joint_id], axis),
                                 robot.joints.get(model.names[joint_id]))
-        if model.joints[joint_id].nv != 1:
-            element = robot.joints.get(model.names[joint_id])
-            kind = element.get("type") if element is not None else "a joint"
-            raise DynamicsError(f"joint '{model.names[joint_id]}' is {kind}, of "
-                                f"{model.joints[joint_id].nv} degrees of freedom: dynamics takes "
-                                "revolute, continuous and prismatic joints only", element)
-        joints.append(model.names[joint_id])
+        name = model.names[joint_id]
+        coordinates = {3: PLANAR_COORDINATES, 6: FLOATING_COORDINATES}.get(
+            model.joints[joint_id].nv)
+        if coordinates is not None:  # planar, floating: rows named as fk names them
+            multiple[name] = coordinates
+            joints += [f"{name}.{c}" for c in coordinates]
+        elif model.joints[joint_id].nv != 1:  # (Pinocchio reads no other from a URDF)
+            element = robot.joints.get(name)
+            raise DynamicsError(f"joint '{name}' has {model.joints[joint_id].nv} degrees of "
+                                "freedom, which dynamics does not name", element)
+        else:
+            joints.append(name)
     variables = variables_of(robot, None if own else root)
     if own:  # its coordinates first when free, none when held
         variables = [v for v in variables if v.joint == own and floating] + \
@@ -141,7 +189,8 @@ def build(robot, floating: bool = False) -> Model:
     oversized = oversized_data(model.nv)
     if oversized:
         raise DynamicsError(oversized, robot.root)
-    return Model(model, model.createData(), joints, variables, mimics, root, reductions(robot))
+    return Model(model, model.createData(), joints, variables, mimics, root, reductions(robot),
+                 multiple)
 
 
 def reductions(robot) -> dict[str, float]:
@@ -351,9 +400,9 @@ def over_limits(model: Model, v: np.ndarray, total: np.ndarray) -> list[str]:
 
     m, said = model.model, []
     for row, name in enumerate(model.joints):
-        if row < 6 and model.root:  # a free root's rows: Pinocchio's limits of the largest float
+        if model.coordinate(name) is not None:  # a free root's or planar joint's: no limits
             continue
-        linear = m.joints[m.getJointId(name)].shortname().startswith("JointModelP")
+        linear = model.linear(name)
         for kind, value, limit, unit in (
                 ("velocity", v[row], m.velocityLimit[row], "m/s" if linear else "rad/s"),
                 ("torque", total[row], m.effortLimit[row], "N" if linear else "N m")):
@@ -482,14 +531,24 @@ def gravity_variables(model: Model, joint: str) -> set[str]:
     it (they turn gravity relative to its axis) and of the joints it carries (they move its
     load). Joints on other branches cannot."""
     m = model.model
-    joint_id = m.getJointId(joint)
+    joint_id = m.getJointId((model.coordinate(joint) or (joint,))[0])
     ids = set(m.supports[joint_id]) | set(m.subtrees[joint_id])
     names = {m.names[i] for i in ids}
+    names |= {f"{name}.{c}" for name in names for c in model.multiple.get(name, ())}
     for follower in followers_of(model).get(joint, {}):  # its actuator carries theirs too
         follower_id = m.getJointId(follower)
         names |= {m.names[i] for i in (*m.supports[follower_id], *m.subtrees[follower_id])}
     variables = {variable.name for variable in model.variables}
     return {model.mimics.get(name, (name,))[0] for name in names} & variables
+
+
+def held_coordinates(model: Model) -> list[int]:
+    """The columns of ``model.variables`` that gravity margins hold at their default: the
+    coordinates of joints of several variables (planar, floating), which have no range (a
+    floating object's position drawn 1 m or 3 m out made any arm carrying it "unable to
+    hold"); the margins are over the ranges of the joints that have one."""
+    return [k for k, variable in enumerate(model.variables)
+            if model.coordinate(variable.name) is not None]
 
 
 def followers_of(model: Model) -> dict:
@@ -539,19 +598,20 @@ def sampled_loads(model: Model, samples: int, seed: int = 0, torques=None, progr
     m, d = model.model, model.data
     names = [variable.name for variable in model.variables]
     drawn = random(model.variables, samples, seed).values if samples else np.zeros((0, len(names)))
+    for k in held_coordinates(model):  # no range to draw from: held where the zero pose has them
+        drawn[:, k] = model.variables[k].default
     # the zero pose, or mid-range for a variable whose range leaves 0 out: every pose judged is
     # one the robot can take
     poses = [{variable.name: variable.default for variable in model.variables}]
     poses += [dict(zip(names, (float(v) for v in row))) for row in drawn]
-    ids = [m.getJointId(name) for name in model.joints]
+    rows = [model.row(name) for name in model.joints]
     followers = followers_of(model)
     leaders = {follower: leader for leader, found in followers.items() for follower in found}
-    loads = [JointLoad(name, float(m.effortLimit[m.joints[i].idx_v]), 0.0,
+    loads = [JointLoad(name, float(m.effortLimit[row]), 0.0,
                        reduction=model.reductions.get(name, 1.0), driven_by=leaders.get(name),
                        followers=dict(followers.get(name, {})))
-             for name, i in zip(model.joints, ids)]
+             for name, row in zip(model.joints, rows)]
     if torques is None:
-        rows = [m.joints[joint_id].idx_v for joint_id in ids]
 
         def torques(pose):
             return pin.computeGeneralizedGravity(m, d, model.configuration(pose))[rows]

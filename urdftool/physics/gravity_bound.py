@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from urdftool.physics.dynamics import (_ROUND_OFF, JointLoad, Model, gravity_variables,
-                                       sampled_loads)
+                                       held_coordinates, sampled_loads)
 
 STARTS = 2  # the worst samples climbed from, for each sign of the torque
 SWEEPS = 100
@@ -51,11 +51,24 @@ class _Torque:
         m = model.model
         # the joint's actuator's torque: its own G, plus each mimic joint's it drives times
         # that one's multiplier (urdftool.physics.dynamics.actuated)
-        self.rows = [(m.joints[m.getJointId(name)].idx_v, weight) for name, weight in
+        self.rows = [(model.row(name), weight) for name, weight in
                      [(joint, 1.0), *(followers or {}).items()]]
         index = {variable.name: k for k, variable in enumerate(model.variables)}
         self.writes: list[list[tuple[int, int, float, float]]] = [[] for _ in index]
+        # a coordinate of a joint of several variables (planar, floating): variable -> (its
+        # joint's first index in q, the joint's coordinate values, which one it is)
+        self.coordinates: dict[int, tuple[int, list, int]] = {}
+        blocks: dict[str, tuple[int, list]] = {}
         for name in model.joints:
+            found = model.coordinate(name)
+            if found is not None:
+                owner, which = found
+                if owner not in blocks:
+                    blocks[owner] = (m.joints[m.getJointId(owner)].idx_q,
+                                     [0.0] * len(model.multiple[owner]))
+                if name in index:
+                    self.coordinates[index[name]] = (*blocks[owner], which)
+                continue
             variable, multiplier, offset = model.mimics.get(name, (name, 1.0, 0.0))
             if variable in index:
                 found = m.joints[m.getJointId(name)]
@@ -66,6 +79,14 @@ class _Torque:
     def set(self, k: int, value: float) -> None:
         """Variable ``k`` to ``value`` (and the mimic joints it drives)."""
         q = self.q
+        if k in self.coordinates:  # its joint's whole block, from all its coordinates
+            from urdftool.physics.dynamics import coordinates_q
+
+            start, pose, which = self.coordinates[k]
+            pose[which] = value
+            block = coordinates_q(pose)
+            q[start:start + len(block)] = block
+            return
         for start, nq, multiplier, offset in self.writes[k]:
             angle = multiplier * value + offset
             if nq == 2:  # continuous: (cos, sin)
@@ -105,7 +126,9 @@ def refine(model: Model, loads: list[JointLoad], samples: np.ndarray,
     index = {variable.name: k for k, variable in enumerate(variables)}
     for column, load in enumerate(loads):
         load.sampled = load.worst
-        free = sorted(index[name] for name in gravity_variables(model, load.joint) if name in index)
+        held = set(held_coordinates(model))
+        free = sorted(index[name] for name in gravity_variables(model, load.joint)
+                      if name in index and index[name] not in held)
         if not free or not len(samples):
             continue
         torque = _Torque(model, load.joint, load.followers)

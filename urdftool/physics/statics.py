@@ -116,7 +116,8 @@ def build_standing(robot, supports: list[str]) -> Standing:
     # joints are the fixed model's); the fixed model's build has refused what urdfdom refuses
     free = build(robot, floating=True)
     floating = free.model
-    model = Model(floating, free.data, fixed.joints, fixed.variables, fixed.mimics)
+    model = Model(floating, free.data, fixed.joints, fixed.variables, fixed.mimics,
+                  multiple=fixed.multiple)
     frames, points = [], []
     UnknownLink.unless_among(supports, robot.links)  # (a usage error in every command)
     for name in supports:
@@ -171,7 +172,7 @@ def stand(standing: Standing, q_values: dict, polygon: bool = True) -> Stance:
     wrenches = wrench.reshape(len(jacobians), 6)
     joint_torques = gravity[6:] - sum(jacobian[:, 6:].T @ f
                                       for jacobian, f in zip(jacobians, wrenches))
-    index = [m.joints[m.getJointId(name)].idx_v - 6 for name in model.joints]
+    index = [model.row(name) - 6 for name in model.joints]
     torques = joint_torques[index]
     com = pin.centerOfMass(m, d, q).copy()
     mass = float(sum(inertia.mass for inertia in m.inertias))
@@ -193,8 +194,7 @@ def stand(standing: Standing, q_values: dict, polygon: bool = True) -> Stance:
 
 def _efforts(model: Model) -> np.ndarray:
     """Each joint's effort limit [N m or N], in ``model.joints`` order."""
-    m = model.model
-    return np.array([m.effortLimit[m.joints[m.getJointId(name)].idx_v] for name in model.joints])
+    return np.array([model.model.effortLimit[model.row(name)] for name in model.joints])
 
 
 def _fixed_base(standing: Standing, q_values: dict) -> np.ndarray:

@@ -7,6 +7,7 @@ from collections import Counter
 from urdftool.numbers import number
 from urdftool.report.console import fixed, plain_console
 from urdftool.report.escape import markup
+from urdftool.report.summary import counted
 
 
 def write_pose(robot_name: str, report, output_format: str, custom: bool, stream=None) -> None:
@@ -77,7 +78,7 @@ def pose_text(robot_name: str, report, custom: bool, stream=None) -> None:
     """custom: the configuration was given (else it is the default one)"""
     console = plain_console(stream)
     where = "the given configuration" if custom else "the default configuration"
-    console.print(f"[bold]{markup(robot_name)}[/] at {where} ({len(report.q)} joints), "
+    console.print(f"[bold]{markup(robot_name)}[/] at {where} ({counted(len(report.q) if report.joints is None else report.joints, 'joint')}), "
                   f"SRDF: {markup(report.srdf or 'none')}")
     from urdftool.collision.pairs import TOUCHING
 

@@ -6,6 +6,7 @@ import math
 
 from urdftool.numbers import exact, number, numbers
 from urdftool.report.escape import csv_cell, text as _text
+from urdftool.report.summary import counted
 
 
 def q_words(chain, solution, given: dict[str, str] | None = None) -> str:
@@ -98,7 +99,7 @@ def csv_text(chain, solutions) -> str:
 def reach_text(chain, solutions, tolerance: float) -> str:
     """``--check-reach``: one line per target, reachable or not, with its residual."""
     lines = [f"reach of {_text(chain.tip)} relative to {_text(chain.base)} "
-             f"({len(chain.variables)} joints), tolerance {number(tolerance, 6)}:"]
+             f"({counted(len(chain.variables), 'joint')}), tolerance {number(tolerance, 6)}:"]
     for solution in solutions:
         x, y, z = solution.target.position
         verdict = "reachable" if solution.solved else "UNREACHABLE"

@@ -4,6 +4,7 @@ points shaded by manipulability)."""
 from __future__ import annotations
 
 from urdftool.numbers import number, numbers
+from urdftool.report.summary import counted
 
 # viridis at five stops: low manipulability light, high dark
 _RAMP = ((253, 231, 37), (94, 201, 98), (33, 145, 140), (59, 82, 139), (68, 1, 84))
@@ -23,7 +24,7 @@ def text(space) -> str:
 
     peak = float(m.max()) or None
     lines = [f"workspace of {text(space.tip)} relative to {text(space.base)} "
-             f"({len(space.joints)} joints: {', '.join(map(text, space.joints))}), "
+             f"({counted(len(space.joints), 'joint')}: {', '.join(map(text, space.joints))}), "
              f"{space.samples} samples (seed {space.seed})",
              f"  max reach {length(space.reach)} m from the first joint at "
              f"({numbers(space.centre)}); horizontal {length(space.horizontal_reach)} m",

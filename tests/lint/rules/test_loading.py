@@ -54,6 +54,22 @@ def test_a_nameless_xacro_robot_nothing_here_builds_is_a_warning_naming_the_cond
     assert "urdfdom refuses it" in found[0].message
 
 
+def test_an_empty_name_in_a_xacro_robot_nothing_here_builds_is_not_said_to_be_refused(tmp_path):
+    """``<robot name="">`` in a xacro nothing here builds was said as "has no name attribute:
+    urdfdom refuses it if it is loaded alone": it has the attribute, and urdfdom takes it. The
+    condition said is what holds: the attribute absent, urdfdom refuses it; empty, a robot
+    without a name."""
+    folder = _package(tmp_path, launched=False)
+    vehicle = folder / "urdf" / "vehicle.xacro"
+    vehicle.write_text(VEHICLE.replace("<robot ", '<robot name="" '))
+    [found] = _u011(folder)
+    assert found.severity.value == "warning"
+    assert found.message.startswith('<robot> has an empty name (name=""): loaded alone it is '
+                                    "a robot without a name (urdfdom takes it")
+    assert "refuses" not in found.message and "no name attribute" not in found.message
+    assert "no launch file here builds it" in found.message
+
+
 def test_a_nameless_xacro_robot_a_launch_file_loads_is_an_error(tmp_path):
     found = _u011(_package(tmp_path, launched=True))
     assert [(f.severity.value, f.message) for f in found] == [
@@ -93,3 +109,13 @@ def test_a_nameless_fragment_calling_a_macro_its_includer_defines_is_a_warning(t
     assert "its <robot> has no name" in found[0].message
     named = _u005(tmp_path / "named", ' name="rov"')
     assert [f.severity.value for f in named] == ["error"]
+
+
+def test_an_empty_robot_name_is_said_as_empty(tmp_path):
+    from urdftool.description.load import load
+    from urdftool.lint.rules.loading import robot_name_missing
+
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name=""><link name="a"/></robot>')
+    [(_, message)] = robot_name_missing(load(str(path)))
+    assert message == '<robot> has an empty name (name=""); give it one'

@@ -70,3 +70,63 @@ def test_multiple_roots_name_a_dozen_roots_not_all_at_each(tmp_path):
     [(_, message)] = tree.multiple_roots(load(str(path)))
     assert message == "link 'b' has no parent joint: the robot has 2 roots ('a', 'b'); " \
         "connect them with joints"
+
+
+def _chain_with_loop(tmp_path, links: int, back_to: int):
+    """``r -> l0 -> ... -> l{links-1}``, and a joint from the last link back to ``l{back_to}``:
+    a loop below the root, closed by a second parent joint of ``l{back_to}``."""
+    names = ["r", *(f"l{i}" for i in range(links))]
+    joints = [(f"j{i}", names[i], names[i + 1]) for i in range(links)]
+    joints.append(("back", names[-1], f"l{back_to}"))
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r">' + "".join(f'<link name="{n}"/>' for n in names)
+                    + "".join(f'<joint name="{j}" type="fixed"><parent link="{p}"/>'
+                              f'<child link="{c}"/></joint>' for j, p, c in joints)
+                    + "</robot>")
+    return load(str(path))
+
+
+def test_a_loop_below_the_root_is_a_cycle(tmp_path):
+    """The walk up each link's first parent joint missed a loop closed by a second parent
+    joint (``r -> a -> b -> a``): U107 alone, while urdfdom's check_urdf never returns on it.
+    Loops of one link (a self-joint below the root), two, three and eight."""
+    for links, back_to, loop in ((1, 0, "l0 -> l0"), (2, 0, "l0 -> l1 -> l0"),
+                                 (3, 0, "l0 -> l1 -> l2 -> l0"), (3, 1, "l1 -> l2 -> l1"),
+                                 (8, 0, " -> ".join(f"l{i}" for i in (*range(8), 0)))):
+        robot = _chain_with_loop(tmp_path, links, back_to)
+        [(joint, message)] = tree.kinematic_cycle(robot)
+        assert message == f"joints form a cycle through links {loop}"
+        assert joint.get("name") == "back"
+
+
+def test_a_second_parent_without_a_loop_is_no_cycle(tmp_path):
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="r"/><link name="a"/><link name="b"/>'
+                    + "".join(f'<joint name="{j}" type="fixed"><parent link="{p}"/>'
+                              f'<child link="{c}"/></joint>'
+                              for j, p, c in (("j0", "r", "a"), ("j1", "r", "b"),
+                                              ("j2", "a", "b")))
+                    + "</robot>")
+    assert list(tree.kinematic_cycle(load(str(path)))) == []
+
+
+def test_a_loop_at_the_end_of_a_long_chain_is_found_without_recursion(tmp_path):
+    robot = _chain_with_loop(tmp_path, 5000, 10)
+    [(joint, message)] = tree.kinematic_cycle(robot)
+    assert message.startswith("joints form a cycle through links l10 -> l11 -> ")
+    assert message.endswith("-> l4999 -> l10")
+
+
+def test_an_empty_name_is_said_as_empty_not_as_missing(tmp_path):
+    """``name=""`` and ``link=""`` were said as attributes missing; urdfdom reads an absent name
+    and an empty one differently (it refuses the first, takes the second for a joint)."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="r"/><link name=""/><link/>'
+                    '<joint name="" type="fixed"><parent link="r"/><child link=""/></joint>'
+                    '<joint name="j" type="fixed"><parent link="r"/><child/></joint></robot>')
+    robot = load(str(path))
+    assert [message for _, message in tree.missing_name(robot)] == [
+        '<link> has an empty name (name="")', "<link> has no name attribute",
+        '<joint> has an empty name (name="")']
+    assert [message for _, message in tree.joint_missing_endpoint(robot)] == [
+        """joint '': <child> names no link (link="")""", "joint 'j': <child> has no link attribute"]

@@ -18,7 +18,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from urdftool.description.files import (MANIFESTS_SAID, inside, kind_of, listing,
-                                        no_file_there, real_path, resolved, walk)
+                                        no_file_there, real_inside, real_path, resolved, walk)
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_name, package_of, package_uri_parts,
                                           written_from_above)
@@ -371,14 +371,14 @@ def _checked(uri: str, named: str, base: str, package: str | None,
     path = real_path(named)  # (a string throughout, the Path made once, of the file found)
     if package is not None:
         folder = real_path(base)
-        if not inside(path, folder):
+        if not real_inside(path, folder):
             return MeshProblem("outside", f"mesh '{uri}' leaves package '{package}' "
                                           f"({folder}); name a file inside the package")
     else:
         # file:// and relative paths stay where the loader's files stay
         contained = os.fspath(containment_root(Path(base)))
         root = real_path(contained)
-        if not inside(path, root):
+        if not real_inside(path, root):
             # as written, never where links lead: that would name what exists outside
             written = os.path.normpath(os.path.join(base, named))
             how = (f"is a symbolic link (or lies in one) leading outside {root}"

@@ -413,26 +413,38 @@ U010 = declare("U010", "xacro-warning", Severity.WARNING, """
 
 @rule("U011", "robot-name-missing", Severity.ERROR)
 def robot_name_missing(robot):
-    """The ``<robot>`` element has no ``name`` attribute.
+    """The ``<robot>`` element has no ``name`` attribute, or an empty one.
 
-    urdfdom (check_urdf, robot_state_publisher) refuses a robot without a name. On a part of a
+    urdfdom (check_urdf, robot_state_publisher) refuses a robot without a ``name`` attribute.
+    It takes ``name=""`` (check_urdf prints "robot name is: "): a robot without a name, which
+    an SRDF or a simulator's model, matched to a robot by its name, cannot be. The commands that pose a
+    robot take an empty name as urdfdom does (``lint.engine.URDFDOM_TAKES``). On a part of a
     robot defined elsewhere (see U105, U106), a note: the robot that includes it has the name.
     A warning naming the condition on a file xacro expands that no launch file of its
-    repository builds: a file another package's robot includes needs no name, since xacro keeps
+    repository builds: a file another package's robot includes needs none, since xacro keeps
     only the includer's ``<robot>`` (Autoware's ``<model>_description/urdf/vehicle.xacro``,
-    included by tier4_vehicle_launch's robot ``vehicle``); loaded alone, urdfdom refuses it.
+    included by tier4_vehicle_launch's robot ``vehicle``); loaded alone, urdfdom refuses it
+    without the attribute, and takes it as a robot without a name with an empty one.
 
-    Bad: ``<robot>``
+    Bad: ``<robot>``, ``<robot name="">``
     Good: ``<robot name="my_robot">``
     """
-    if not robot.root.get("name"):
-        message = "<robot> has no name attribute; add name=\"...\""
-        if _built_by_nothing_here(robot):
-            message = Conditional(
-                "<robot> has no name attribute: urdfdom refuses it if it is loaded alone (add "
-                "name=\"...\"); no launch file here builds it, and a file another robot's xacro "
-                "includes needs none (xacro keeps only the includer's <robot>)")
-        yield robot.root, message
+    name = robot.root.get("name")
+    if name:
+        return
+    if not _built_by_nothing_here(robot):
+        yield robot.root, ('<robot> has no name attribute; add name="..."' if name is None
+                           else '<robot> has an empty name (name=""); give it one')
+        return
+    # the condition said as it is: urdfdom refuses a missing attribute, takes an empty one
+    alone = ('<robot> has no name attribute: urdfdom refuses it if it is loaded alone (add '
+             'name="...")' if name is None else
+             '<robot> has an empty name (name=""): loaded alone it is a robot without a name '
+             "(urdfdom takes it, but an SRDF or a simulator's model names the robot it is for; "
+             "give it one)")
+    yield robot.root, Conditional(
+        f"{alone}; no launch file here builds it, and a file another robot's xacro includes "
+        "needs none (xacro keeps only the includer's <robot>)")
 
 
 def _built_by_nothing_here(robot) -> bool:

@@ -85,7 +85,8 @@ def missing_name(robot):
     for tag in ("link", "joint"):
         for element in robot.children(tag):
             if not names[element]:
-                yield element, f"<{tag}> has no name attribute"
+                yield element, (f"<{tag}> has no name attribute" if element.get("name") is None
+                                else f"<{tag}> has an empty name (name=\"\")")
 
 
 @rule("U104", "joint-missing-endpoint", Severity.ERROR)
@@ -104,7 +105,10 @@ def joint_missing_endpoint(robot):
                               + (f": {dropped} (--arg NAME=VALUE checks another build)"
                                  if dropped else ""))
             elif not link:
-                yield element, f"joint '{joint.get('name')}': <{side}> has no link attribute"
+                yield element, (f"joint '{joint.get('name')}': <{side}> has no link attribute"
+                                if element.get("link") is None else
+                                f"joint '{joint.get('name')}': <{side}> names no link "
+                                "(link=\"\")")
 
 
 @rule("U105", "unknown-link", Severity.ERROR)
@@ -228,6 +232,10 @@ def _all_joints_wired(robot) -> bool:
 def kinematic_cycle(robot):
     """The joints form a loop, so the tree has no root or a link is its own ancestor.
 
+    A loop below the root (``r -> a -> b -> a``: ``a`` has a second parent joint, U107, and is
+    its own ancestor through it) is one too: urdfdom's check_urdf never returns on it (its tree
+    walk loops) and robot_state_publisher never starts.
+
     Bad: ``a -> b`` and ``b -> a``
     Good: a tree: each link reached from the root by exactly one path
     """
@@ -247,6 +255,47 @@ def kinematic_cycle(robot):
             yield joint, "joints form a cycle through links " + " -> ".join(
                 [*reversed(cycle), cycle[-1]])
         done.update(path)
+    if any(len(joints) > 1 for joints in parents.values()):
+        # the walk above goes up through each link's first parent joint only: a loop closed
+        # by a second parent joint is found going down every joint
+        yield from _loops_through_second_parents(robot, reported)
+
+
+def _loops_through_second_parents(robot, reported: set[str]):
+    """(joint, message) for each loop of joints that a walk down every joint finds and that
+    shares no link with a loop in ``reported``: depth first, iteratively (10,000-link
+    chains), each link entered once; a joint leading back to a link on the way down closes a
+    loop, said at that joint as ``a -> b -> a`` (parent to child)."""
+    children: dict[str, list] = {}
+    for joint, ends in robot.ends().items():
+        parent, child = ends["parent"][1], ends["child"][1]
+        if parent in robot.links and child in robot.links:
+            children.setdefault(parent, []).append((joint, child))
+    entered: set[str] = set()
+    for start in robot.links:
+        if start in entered:
+            continue
+        entered.add(start)
+        way, on_way = [start], {start: 0}
+        stack = [iter(children.get(start, ()))]
+        while stack:
+            step = next(stack[-1], None)
+            if step is None:
+                stack.pop()
+                del on_way[way.pop()]
+                continue
+            joint, child = step
+            if child in on_way:
+                loop = way[on_way[child]:]
+                if reported.isdisjoint(loop):
+                    reported.update(loop)
+                    yield joint, "joints form a cycle through links " + " -> ".join(
+                        [*loop, child])
+            elif child not in entered:
+                entered.add(child)
+                on_way[child] = len(way)
+                way.append(child)
+                stack.append(iter(children.get(child, ())))
 
 
 @rule("U110", "self-joint", Severity.ERROR)
