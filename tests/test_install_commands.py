@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import ROOT, parsed
+from conftest import ROOT, walked
 from urdftool.origin import Origin
 
 EXTRAS = set(tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
@@ -124,7 +124,7 @@ def test_the_check_can_fail(bad):
 # ---- the hints urdftool prints --------------------------------------------------------------
 
 def _string_constants(path: Path):
-    for node in ast.walk(parsed(path.read_text(encoding="utf-8"))):
+    for node in walked(path.read_text(encoding="utf-8")):
         if isinstance(node, ast.Constant) and isinstance(node.value, str):
             yield node.lineno, node.value
 
@@ -141,8 +141,8 @@ def test_hints_are_built_in_one_place():
 def _extras_named_in_code() -> set[str]:
     named = set()
     for path in (ROOT / "urdftool").rglob("*.py"):
-        tree = parsed(path.read_text(encoding="utf-8"))
-        for node in ast.walk(tree):
+        source = path.read_text(encoding="utf-8")
+        for node in walked(source):
             if isinstance(node, ast.Call) and getattr(node.func, "id", None) == "install_command":
                 named |= {a.value for a in node.args if isinstance(a, ast.Constant)}
             if isinstance(node, ast.Constant) and isinstance(node.value, str) \

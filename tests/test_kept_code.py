@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from conftest import ROOT, parsed
+from conftest import ROOT, walked
 
 # made in one process (collect), used in another (the door's kept_code); prints what the
 # second compiled
@@ -202,7 +202,7 @@ def test_every_dataclass_has_a_docstring():
 
     bare = [f"{path.relative_to(ROOT)}:{node.lineno} {node.name}"
             for path in sorted((ROOT / "urdftool").rglob("*.py"))
-            for node in ast.walk(parsed(path.read_text(encoding="utf-8")))
+            for node in walked(path.read_text(encoding="utf-8"))
             if isinstance(node, ast.ClassDef) and any(map(is_dataclass, node.decorator_list))
             and ast.get_docstring(node) is None]
     assert not bare, bare

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import parsed
+from conftest import walked
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "urdftool"
@@ -87,7 +87,7 @@ MODULES = _modules()
 def _computed_imports(name: str, path: Path):
     """(line, name imported) of every ``import_module`` call not naming its module whole."""
     own = name if path.name == "__init__.py" else name.rpartition(".")[0]
-    for node in ast.walk(parsed(path.read_text(encoding="utf-8"))):
+    for node in walked(path.read_text(encoding="utf-8")):
         if isinstance(node, ast.Call) and getattr(node.func, "attr",
                                                   getattr(node.func, "id", "")) == "import_module":
             argument = node.args[0] if node.args else None

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import load_text, parsed
+from conftest import load_text, walked
 from urdftool.numbers import MILLIMETRE, fixed_texts, number, numbers, symmetric_texts
 
 PACKAGE = Path(__file__).resolve().parent.parent / "urdftool"
@@ -145,7 +145,7 @@ def test_no_module_raises_a_float_power_itself():
     found = []
     for path in sorted(PACKAGE.rglob("*.py")):
         relative = path.relative_to(PACKAGE).as_posix()
-        for node in ast.walk(parsed(path.read_text())):
+        for node in walked(path.read_text()):
             if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Pow) \
                     and not isinstance(node.left, ast.Constant) and relative != "numbers.py":
                 found.append(f"{relative}:{node.lineno}: {ast.unparse(node)}")

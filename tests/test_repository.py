@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from conftest import parsed
+from conftest import walked
 
 ROOT = Path(__file__).resolve().parents[1]
 # where conflict markers are the data: U001's case files, the fuzz regressions, and the rule
@@ -60,7 +60,7 @@ def test_no_code_searches_a_list_among_the_items_before_each():
 
     found = []
     for path in Path(urdftool.__file__).parent.rglob("*.py"):
-        for loop in ast.walk(parsed(path.read_text(encoding="utf-8"))):
+        for loop in walked(path.read_text(encoding="utf-8")):
             targets = [loop.target] if isinstance(loop, ast.For) else \
                 [g.target for g in getattr(loop, "generators", ())]
             counters = {n.id for t in targets for n in ast.walk(t) if isinstance(n, ast.Name)}
@@ -87,7 +87,7 @@ def test_no_message_puts_an_article_before_a_word_it_computes():
     before = re.compile(r"(^|\W)(a|an) ['\"(<]?$", re.I)
     found = []
     for path in Path(urdftool.__file__).parent.rglob("*.py"):
-        for node in ast.walk(parsed(path.read_text(encoding="utf-8"))):
+        for node in walked(path.read_text(encoding="utf-8")):
             parts = node.values if isinstance(node, ast.JoinedStr) else \
                 [node.left, node.right] if isinstance(node, ast.BinOp) and \
                 isinstance(node.op, ast.Add) else []

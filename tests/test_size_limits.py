@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 import urdftool
-from conftest import ROOT, parsed
+from conftest import ROOT, walked
 
 pytestmark = pytest.mark.worker  # budgets and deaths: run_cli's commands in the forked worker
 
@@ -48,7 +48,7 @@ def test_similarity_is_searched_in_one_place():
     diff's (unified_diff's own matcher, given only the lines the edits touch)."""
     callers: dict[str, set] = {}
     for path in PACKAGE.rglob("*.py"):
-        for node in ast.walk(parsed(path.read_text())):
+        for node in walked(path.read_text()):
             if isinstance(node, ast.Attribute) and node.attr in ("get_close_matches",
                                                                  "SequenceMatcher"):
                 callers.setdefault(node.attr, set()).add(path.relative_to(PACKAGE).as_posix())

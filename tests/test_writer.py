@@ -13,7 +13,7 @@ import ast
 from pathlib import Path
 
 import urdftool
-from conftest import parsed
+from conftest import walked
 
 PACKAGE = Path(urdftool.__file__).parent
 WRITER = "description/files.py"
@@ -45,7 +45,7 @@ def _names(node) -> set[str]:
 def writes(source: str) -> list[tuple[int, str]]:
     """(line, what) for every place in ``source`` that writes to the file system."""
     found = []
-    for node in ast.walk(parsed(source)):
+    for node in walked(source):
         if isinstance(node, (ast.Import, ast.ImportFrom)):
             modules = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module]
             if any(m and m.split(".")[0] == "tempfile" for m in modules):

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import parsed
+from conftest import walked
 from urdftool.description import files
 
 
@@ -144,7 +144,7 @@ def _in_memory(node) -> bool:
 def file_system_calls(source: str) -> list[tuple[int, str]]:
     """(line, call) of every place ``source`` touches the file system itself."""
     found = []
-    for node in ast.walk(parsed(source)):
+    for node in walked(source):
         if isinstance(node, ast.ImportFrom) and node.module in ("os", "os.path", "glob",
                                                                  "shutil", "pathlib"):
             for alias in node.names:

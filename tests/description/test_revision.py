@@ -7,7 +7,7 @@ import shutil
 import subprocess
 
 import pytest
-from conftest import parsed
+from conftest import walked
 from hostile_git import (config, embed_bare_repository, git, has_git, make_partial,
                          markers_found, repository)
 
@@ -225,8 +225,8 @@ def test_git_runs_in_one_module_only():
     package = Path(urdftool.__file__).parent
     starting = set()
     for module in package.rglob("*.py"):
-        tree = parsed(module.read_text())
-        for node in ast.walk(tree):
+        source = module.read_text()
+        for node in walked(source):
             names = ([alias.name for alias in node.names] if isinstance(node, ast.Import) else
                      [node.module] if isinstance(node, ast.ImportFrom) else [])
             if any(name and name.split(".")[0] in ("subprocess", "pty") for name in names) or (

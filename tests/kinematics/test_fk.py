@@ -9,7 +9,7 @@ import re
 import numpy as np
 import pytest
 
-from conftest import ROBOTS, corpus_or_skip, parsed
+from conftest import ROBOTS, corpus_or_skip, walked
 from urdftool.kinematics import configuration as config
 from urdftool.physics import mat3
 from urdftool.kinematics import transforms
@@ -508,7 +508,7 @@ def test_every_random_stream_comes_from_one_maker_that_refuses_a_negative_seed()
     assert random_stream(2 ** 70).integers(10) == random_stream(2 ** 70).integers(10)
     makers = []
     for path in Path(urdftool.__file__).parent.rglob("*.py"):
-        for node in ast.walk(parsed(path.read_text())):
+        for node in walked(path.read_text()):
             if isinstance(node, ast.Attribute) and node.attr in ("default_rng", "RandomState",
                                                                  "SeedSequence"):
                 makers.append(f"{path.name}:{node.lineno}")

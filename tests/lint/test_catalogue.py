@@ -7,7 +7,7 @@ import types
 
 import pytest
 
-from conftest import ROOT, parsed
+from conftest import ROOT, walked
 from urdftool.lint.catalogue import Catalogue, Severity, UnknownRule, declare, rule
 from urdftool.lint.rules import CATALOGUE, FAMILY_MODULES
 
@@ -72,8 +72,8 @@ def _declared_in_source() -> list[str]:
     """Every code a family module's source passes to rule() or declare(), read with ast."""
     codes = []
     for module in FAMILY_MODULES:
-        tree = parsed(open(module.__file__, encoding="utf-8").read())
-        for node in ast.walk(tree):
+        source = open(module.__file__, encoding="utf-8").read()
+        for node in walked(source):
             if isinstance(node, ast.Call) and getattr(node.func, "id", None) in ("rule", "declare"):
                 codes.append(node.args[0].value)
     return codes

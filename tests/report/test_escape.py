@@ -14,7 +14,7 @@ import pytest
 import yaml
 from lxml import etree
 
-from conftest import parsed
+from conftest import parsed, walked
 from urdftool.report import escape
 
 URDFTOOL = Path(escape.__file__).resolve().parent.parent
@@ -238,8 +238,9 @@ def scan() -> list[str]:
     for path in _sources("cli", "report", files=("server.py", "pytest_plugin.py", "docs.py",
                                                   "terminal.py", "checking.py")):
         relative = path.relative_to(URDFTOOL.parent).as_posix()
-        tree = parsed(path.read_text())
-        for node in ast.walk(tree):
+        source = path.read_text()
+        tree = parsed(source)
+        for node in walked(source):
             if isinstance(node, ast.ImportFrom) and node.module in ("html", "rich.markup") and \
                     any(a.name == "escape" for a in node.names) and \
                     path.name not in ("escape.py", *OWN_TEXT):
