@@ -753,3 +753,24 @@ def test_a_negative_total_mass_is_said_as_negative_not_as_no_mass(tmp_path, run_
     result = run_cli("dynamics", robot)
     assert "the robot's mass is negative (-1 kg)" in result.output, result.output
     assert "missing or of mass 0" not in result.output
+
+
+def test_rows_over_the_limit_are_refused_before_the_model_is_built(tmp_path, monkeypatch):
+    """attack25: a 10,000-link chain ran out of the 2 GiB memory budget (U018, 23 s) building
+    the Pinocchio model that state() then refused for its rows; build counts them from the
+    text first (a mimic joint's velocity is one of the model's)."""
+    from conftest import load_text
+    from urdftool.errors import OverLimit
+    from urdftool.kinematics import native
+
+    joints = "".join(
+        f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+        + ('<mimic joint="j0"/>' if i == 5 else "") + f'</joint><link name="l{i + 1}"/>'
+        for i in range(12))
+    robot = load_text(tmp_path, f'<robot name="r"><link name="l0"/>{joints}</robot>')
+    monkeypatch.setattr(native, "build_model", lambda *a: pytest.fail("built"))
+    with pytest.raises(OverLimit, match="12 rows, over the limit of 11"):
+        build(robot, max_rows=11)
+    monkeypatch.undo()
+    assert len(build(robot, max_rows=12).joints) == 12

@@ -78,9 +78,12 @@ def dynamics(
     refuse_bad_outputs(plot, inputs=words)
     try:  # the question before the robot: a --support that names no link is the user's
         UnknownLink.unless_among(support, robot.links)
-        model = build(robot, floating=floating)
+        model = build(robot, floating=floating,
+                      max_rows=None if support else max_matrix_rows or None)
     except (DynamicsError, UnknownLink) as error:
         fail_at(robot, error)
+    except OverLimit as error:  # (counted before the model is built)
+        fail_over_limit(error, "--max-matrix-rows")
     if samples:
         from urdftool.errors import listed
         from urdftool.physics.dynamics import held_coordinates

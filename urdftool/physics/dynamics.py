@@ -128,13 +128,15 @@ def coordinates_q(pose) -> np.ndarray:
     return np.concatenate([pose[:3], pin.Quaternion(pin.rpy.rpyToMatrix(*pose[3:])).coeffs()])
 
 
-def build(robot, floating: bool = False) -> Model:
+def build(robot, floating: bool = False, max_rows: int | None = None) -> Model:
     """A Pinocchio model of the robot (planar and floating joints as its coordinates), its base
     fixed, or with ``floating`` free: a free-flyer root joint ``root_joint`` (as ``fk
     --floating``), whose six velocity variables come first. A robot with its own free base
     (:func:`urdftool.kinematics.tree.own_free_base`) has that joint as its free root, named
     as it is, and no second; fixed, it is held where its origin puts the base (Pinocchio's
-    reduced model)."""
+    reduced model). OverLimit, before Pinocchio builds anything, when the model's joint
+    velocities (the rows of M(q)) are over ``max_rows`` (None: no limit): a 10,000-link chain
+    ran out of the 2 GiB memory budget building the model that :func:`state` then refused."""
     import pinocchio as pin
 
     from urdftool.errors import FKError
@@ -150,6 +152,14 @@ def build(robot, floating: bool = False) -> Model:
         raise DynamicsError(str(error), error.element) from None
     _inertials_within(robot)
     own = own_free_base(robot)
+    if max_rows is not None:
+        rows = _velocity_rows(robot) + (6 if floating and not own else 0) \
+            - (6 if own and not floating else 0)
+        if rows > max_rows:
+            from urdftool.errors import OverLimit
+
+            raise OverLimit("M(q) and C(q, v) of the robot's joint velocities", rows, max_rows,
+                            "rows")
     root = (own or FLOATING_ROOT) if floating else None
     model = build_model(robot, *((pin.JointModelFreeFlyer(), root) if floating and not own
                                  else ()))
@@ -360,17 +370,26 @@ def _computed(model: Model, q: np.ndarray, q_values: dict, v_values: dict | None
     return result
 
 
+_VELOCITIES = {"revolute": 1, "continuous": 1, "prismatic": 1, "planar": 3, "floating": 6}
+
+
+def _velocity_rows(robot) -> int:
+    """The joint velocities Pinocchio's model of the robot has, read from the text: each
+    joint's, a mimic joint's too (the model keeps it, its leader's multiple)."""
+    return sum(_VELOCITIES.get(joint.get("type"), 0) for joint in robot.joints.values())
+
+
 def _inertials_within(robot) -> None:
     """DynamicsError for the first link whose inertial is past the bounds of
     :func:`urdftool.physics.mass.problem` (an ``<inertial><origin>`` at 1e200 gave torques of
     NaN and "M(q) is singular", a mass of 1e308 "P = inf J"); Pinocchio reads it as written."""
-    from urdftool.physics.mass import problem as mass_problem
+    from urdftool.physics.mass import problem_at
 
     for name, link in robot.links.items():
-        problem = mass_problem(link)  # (not finite, or not a number: urdfdom refuses)
-        if problem:
-            where = "inertial/origin" if problem.startswith("<origin>") else "inertial"
-            raise DynamicsError(f"link '{name}': <inertial>{problem}", link.find(where))
+        found = problem_at(link)  # (not finite, or not a number: urdfdom refuses)
+        if found:
+            raise DynamicsError(f"link '{name}': <inertial>{found[1]}",
+                                link.find(f"inertial/{found[0]}"))
 
 
 def _overflowed(result: State) -> str | None:

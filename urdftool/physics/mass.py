@@ -119,12 +119,13 @@ def _within(mass: float, terms: tuple, xyz: tuple, rpy: tuple) -> bool:
             and all(map(math.isfinite, rpy)))
 
 
-def problem(link) -> str | None:
+def problem_at(link) -> tuple[str, str] | None:
     """Why a link's ``<inertial>``, whose mass, inertia and origin all parse as finite numbers,
     gives no :class:`Body`: a number past the bounds urdftool computes with (:data:`MAX_MASS`,
     :data:`MAX_MOMENT`, ``numbers.MAX_COORDINATE``); None otherwise (no inertial, a number
-    that does not parse or is not finite: the rules reading those say so). It names the
-    element first (``<mass> 1e+308 kg is past ...``), to follow ``<inertial>``."""
+    that does not parse or is not finite: the rules reading those say so), as (the tag of the
+    ``<inertial>``'s child it is about, the message); the message names that child first
+    (``<mass> 1e+308 kg is past ...``), to follow ``<inertial>``."""
     from urdftool.numbers import number
 
     inertial = first_child(link, "inertial")
@@ -145,16 +146,23 @@ def problem(link) -> str | None:
     if not all(map(math.isfinite, values)):
         return None
     if not abs(mass[0]) <= MAX_MASS:
-        return (f"<mass> {number(mass[0])} kg is past the {number(MAX_MASS)} kg urdftool computes "
-                "mass properties with")
+        return "mass", (f"<mass> {number(mass[0])} kg is past the {number(MAX_MASS)} kg urdftool "
+                        "computes mass properties with")
     for attribute, term in zip(INERTIA_ATTRIBUTES, terms):
         if not abs(term[0]) <= MAX_MOMENT:
-            return (f"<inertia {attribute}> {number(term[0])} kg m^2 is past the "
-                    f"{number(MAX_MOMENT)} kg m^2 urdftool computes mass properties with")
+            return "inertia", (f"<inertia {attribute}> {number(term[0])} kg m^2 is past the "
+                               f"{number(MAX_MOMENT)} kg m^2 urdftool computes mass properties "
+                               "with")
     if not max(map(abs, xyz)) < MAX_COORDINATE:
-        return (f"<origin> xyz '{' '.join(map(number, xyz))}' is past the "
-                f"{number(MAX_COORDINATE)} m urdftool places a centre of mass within")
+        return "origin", (f"<origin> xyz '{' '.join(map(number, xyz))}' is past the "
+                          f"{number(MAX_COORDINATE)} m urdftool places a centre of mass within")
     return None
+
+
+def problem(link) -> str | None:
+    """The message of :func:`problem_at`, or None."""
+    found = problem_at(link)
+    return found[1] if found else None
 
 
 _NONE = object()  # (robot.memo_for keeps no None)

@@ -31,7 +31,7 @@ from urdftool.description.values import number_tuple, origin_pose
 from urdftool.description.values import origin as origin_of
 from urdftool.physics import mat3
 from urdftool.physics.mass import INERTIA_ATTRIBUTES, declared_of, moments_of, \
-    problem as mass_problem, relative_difference, triangle_violation
+    problem_at, relative_difference, triangle_violation
 from urdftool.physics import solids
 from urdftool.physics.frames import parent_joints
 from urdftool.physics.support import inside_own, link_reach
@@ -197,8 +197,9 @@ def malformed_inertial(robot):
                 values, problem = number_tuple(text, 1)
                 if problem or not math.isfinite(values[0]):
                     yield inertia, f"{_prefix(link)} {attribute}='{text}' is not a finite number"
-            if inertial is inertials[0] and (beyond := mass_problem(link)):
-                yield inertial, f"{_prefix(link)}{beyond}"
+            if inertial is inertials[0] and (beyond := problem_at(link)):
+                part = first_child(inertial, beyond[0])
+                yield (part if part is not None else inertial), f"{_prefix(link)}{beyond[1]}"
 
 
 @rule("U302", "negative-mass", Severity.ERROR)
