@@ -127,6 +127,8 @@ def _unnamed_arguments(run, args: dict[str, str]) -> list[str]:
     the robot commands warn). Said once for the run, not per robot: an argument one robot of
     a folder reads and another does not is no mistake. Not said when what a robot read is not
     known (a run the result cache served whole): said only when it holds."""
+    if not args or not run.results:
+        return []  # (before the imports: a check without --arg imports no mesh module here)
     from pathlib import Path
 
     from urdftool.description.files import read_regular
@@ -134,8 +136,6 @@ def _unnamed_arguments(run, args: dict[str, str]) -> list[str]:
     from urdftool.description.xacro_text import argument_warnings
     from urdftool.report.summary import counted
 
-    if not args or not run.results:
-        return []
     paths = set()
     for result in run.results:
         read = result.read if result.record is None else [

@@ -164,3 +164,21 @@ def test_a_xacro_argument_no_robot_checked_names_is_said_once_on_standard_error(
         "nothing; did you mean 'length'?"]
     named = run_cli("check", tmp_path, "--arg", "length=2", "--no-cache")
     assert named.exit_code == 0 and named.stderr == "", named.output
+
+
+def test_a_check_without_an_argument_imports_no_mesh_module(tmp_path):
+    """The warning of an argument no file names reads what each robot read, skipping meshes by
+    their extension: asked before anything is given, it imported the mesh package for every
+    check (7 M instructions of r2d2's 555 M, for a robot without a mesh). A fresh process, as
+    a user's run: ``-X importtime`` prints a line per import."""
+    import re
+    import subprocess
+    import sys
+
+    (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
+    done = subprocess.run([sys.executable, "-X", "importtime", "-m", "urdftool", "check",
+                           "--no-cache", "--jobs", "1", "r.urdf"], capture_output=True,
+                          text=True, cwd=tmp_path, timeout=120)
+    assert done.returncode == 0 and "no problems found" in done.stdout, done.stderr
+    assert not re.search(r"\|\s+urdftool\.description\.(meshes|mesh_arrays|collada)\b",
+                         done.stderr), done.stderr
