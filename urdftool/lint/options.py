@@ -74,9 +74,12 @@ def _selected(selection: Selection, code: str) -> bool:
 
 @functools.lru_cache(maxsize=64)
 def _runs_nothing(selection: Selection) -> bool:
+    """Asked of the rules a check with the selection's targets may run: without a target, no
+    rule of a target's family is allowed, and their family stays unimported."""
     from urdftool.lint.rules import CATALOGUE
 
-    return not any(selection.allows(rule.code) for rule in CATALOGUE)
+    return not any(selection.allows(rule.code)
+                   for rule in CATALOGUE.running(bool(selection.targets)))
 
 
 def _target_of(code: str) -> str | None:
