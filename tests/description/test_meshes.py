@@ -365,6 +365,23 @@ def test_the_run_cache_keeps_to_its_byte_limit(tmp_path, monkeypatch):
     assert len(cache) == 4  # of 8: the others were let go
 
 
+def test_the_run_cache_keeps_a_mesh_once_for_equal_limits_and_apart_for_others(tmp_path,
+                                                                              monkeypatch):
+    """Its keys hold the limits' numbers (run_cache.limits_key), not the record: robots whose
+    limits are equal records share the mesh read; other limits read it under their own."""
+    from urdftool.description import meshes
+
+    cache = meshes.run_cache.new_cache()
+    monkeypatch.setattr(meshes.run_cache, "_RUN_CACHE", cache)
+    robots = _boxes(tmp_path, 1) + [_robot(tmp_path, "p0.stl")]
+    for robot in robots:
+        meshes.mesh_facts(robot, "p0.stl", limits=MeshLimits(max_triangles=12))
+    assert len(cache) == 2  # the arrays and the facts at scale 1, once
+    with pytest.raises(MeshProblem) as error:
+        meshes.mesh_facts(robots[0], "p0.stl", limits=MeshLimits(max_triangles=11))
+    assert error.value.kind == "too-large"
+
+
 def test_the_run_cache_lets_the_least_recently_used_go(monkeypatch):
     from urdftool.description.meshes import run_cache
 

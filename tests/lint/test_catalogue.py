@@ -129,6 +129,36 @@ def test_a_check_without_a_target_never_imports_the_targets_family(tmp_path):
                                    "True"]
 
 
+def test_a_selector_of_the_other_rules_never_imports_the_targets_family():
+    """``--ignore U103`` (or a settings file's ``select``) imported the portability family to
+    check the selector, and every robot's check then asked each of its rules whether it runs:
+    14 M instructions of a check of the corpus. Only a selector that picks none of the other
+    rules imports it; once imported, a check without a target still runs only the others."""
+    import subprocess
+    import sys
+
+    code = """if True:
+        import sys
+        from urdftool.lint.options import Selection
+        from urdftool.lint.settings import check_selectors
+        from urdftool.lint.rules import CATALOGUE
+        portability = "urdftool.lint.rules.portability"
+        check_selectors(["U103", "U2", "inverted-limits"])
+        nothing = Selection(ignore=("U103",)).runs_nothing()
+        print(portability in sys.modules, nothing)
+        before = CATALOGUE.running(False)
+        check_selectors(["U92"])
+        print(portability in sys.modules, CATALOGUE.running(False) == before,
+              any(r.code.startswith("U92") for r in CATALOGUE.running(True)))
+        print(Selection(select=("U92",)).runs_nothing(),
+              Selection(select=("U92",), targets=("mujoco",)).runs_nothing())
+    """
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["False", "False", "True", "True", "True", "True", "False"]
+
+
 def test_codes_are_emitted_by_modules_that_do_not_declare_them():
     """Nothing declares a code where it is emitted: U900/U901 live in lint/rules/internal.py."""
     for path in (ROOT / "urdftool" / "lint").glob("*.py"):

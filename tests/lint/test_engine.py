@@ -100,6 +100,20 @@ def test_selection_by_code_prefix_and_name():
     assert Selection(ignore=("inverted-limits",)).allows("U205")
 
 
+def test_allowing_answers_as_allows_does_once_per_selection():
+    """The engine asks ``allowing()`` of every rule for every robot: the same answers as
+    ``allows``, and one table for equal selections (each file's settings make their own)."""
+    selections = (Selection(), Selection(select=("U2",)), Selection(ignore=("U103", "U2")),
+                  Selection(select=("U", "inverted-limits"), ignore=("U2",)),
+                  Selection(targets=("mujoco",)), Selection(select=("U92",), targets=("mujoco",)))
+    codes = [rule.code for rule in CATALOGUE.rules] + ["U999"]
+    for selection in selections:
+        allows = selection.allowing()
+        assert [allows(code) for code in codes] == [selection.allows(code) for code in codes]
+    assert Selection(ignore=("U103",)).allowing() == Selection(ignore=("U103",)).allowing()
+    assert not Selection(ignore=("U103",)).allowing()("U103")
+
+
 def _load_error(tmp_path, name: str, text: str, **options):
     path = tmp_path / name
     path.write_text(text)

@@ -10,6 +10,7 @@ name (ROS 1's ``leftJoint`` is ROS 2's ``left_joint``). It judges nothing.
 
 from __future__ import annotations
 
+import functools
 import re
 
 from urdftool.description import data
@@ -88,10 +89,11 @@ def _data() -> dict:
     return data.load("gazebo_plugins.json")
 
 
+@functools.lru_cache(maxsize=4096)
 def plugin_key(filename: str) -> str | None:
     """The data's key of a ``<plugin filename>`` (``libgazebo_ros_diff_drive.so``,
     ``gz-sim-diff-drive-system``, ``libignition-gazebo6-diff-drive-system.so``), or None when
-    it is no plugin the data knows."""
+    it is no plugin the data knows. Once per process for each name, as :func:`plugin`."""
     name = filename.strip().rsplit("/", 1)[-1]
     system = _GZ_SYSTEM.match(name)
     if system:
@@ -104,8 +106,14 @@ def plugin_key(filename: str) -> str | None:
 def plugin(element) -> Plugin | None:
     """The plugin a ``<plugin>`` element loads, or None (a vendor's, or a misspelt one)."""
     key = plugin_key(element.get("filename") or "")
-    if key is None:
-        return None
+    return None if key is None else _plugin(key)
+
+
+@functools.lru_cache(maxsize=None)  # (one a key of the data: a few hundred at most)
+def _plugin(key: str) -> Plugin:
+    """The :class:`Plugin` of the data's ``key``, made once per process (the rules ask of each
+    ``<plugin>`` element, several times: 613 asks on the corpus; its versions' names made into
+    sets, its sources into words, each time); read, never changed, by its callers."""
     entry = _data()["plugins"][key]
     sources = _data()["sources"]
     read = [r for version in entry["versions"].values() for r in version["read"]]

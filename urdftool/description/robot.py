@@ -19,6 +19,8 @@ if TYPE_CHECKING:  # the annotations' names, never evaluated
 
     T = TypeVar("T")
 
+_UNSET = object()  # (what Robot.memo has not computed)
+
 
 class LoadNote(Frozen):
     """Something the loader noticed that did not stop it.
@@ -124,10 +126,12 @@ class Robot(Record):
     def memo(self, key, compute: Callable[[], T]) -> T:
         """``compute()`` once per robot for ``key`` (by convention the function that asks), then
         the same value: what several rules derive from a robot (its companions, mesh outcomes,
-        link solids) is built once."""
-        if key not in self._memo:
-            self._memo[key] = compute()
-        return self._memo[key]
+        link solids) is built once. Looked up once when known (35,000 asks on the corpus, each
+        key hashed twice, a mesh's with its limits' hash in Python)."""
+        found = self._memo.get(key, _UNSET)
+        if found is _UNSET:
+            found = self._memo[key] = compute()
+        return found
 
     def memoized(self, key) -> bool:
         """Whether :meth:`memo` has computed ``key`` (a result cache lists what it was built

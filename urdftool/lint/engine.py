@@ -165,9 +165,10 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     """
     if selection.targets:
         robot.targets = target_versions(selection.targets)
-    findings = [f for f in note_findings(robot) if selection.allows(f.code)]
-    findings += judged(robot, _run_rules(robot, selection.allows, bool(selection.targets)))
-    findings = suppressions.apply(findings, robot.sources, selection.allows, CATALOGUE)
+    allows = selection.allowing()
+    findings = [f for f in note_findings(robot) if allows(f.code)]
+    findings += judged(robot, _run_rules(robot, allows, bool(selection.targets)))
+    findings = suppressions.apply(findings, robot.sources, allows, CATALOGUE)
     return distinct_sorted(findings)
 
 

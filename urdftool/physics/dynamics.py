@@ -218,7 +218,7 @@ def reductions(robot) -> dict[str, float]:
         values, _ = parse_numbers((texts[0] or "").strip(), 1) if texts else (None, None)
         if not values or not math.isfinite(values[0]) or values[0] in (0.0, 1.0):
             continue
-        for joint in transmission_joints(transmission):
+        for joint in transmission_joints(robot, transmission):
             if joint.name:
                 found[joint.name] = abs(values[0])
     return found

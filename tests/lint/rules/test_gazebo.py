@@ -57,6 +57,27 @@ def test_a_sensor_in_an_sdf_link_of_a_gazebo_block_is_that_links(tmp_path):
     assert found == [("robot.urdf", 13, "U615")]
 
 
+def test_frames_are_judged_where_their_plugins_read_them(tmp_path):
+    """A sensor plugin's frame (``frame_name``, ``frameName``) in a ``<sensor>``, a nested one
+    too, not in a model plugin beside it; a ``bodyName`` anywhere in the block; with the
+    sensors, in the one walk of the block the rule makes."""
+    robot = """<robot name="r"><link name="a"/><joint name="j" type="fixed"><parent link="a"/>
+      <child link="a2"/></joint><link name="a2"/>
+      <gazebo reference="a"><plugin name="m" filename="x"><frame_name>nowhere</frame_name></plugin>
+        <sensor type="imu" name="s"><sensor type="imu" name="t"><plugin name="p" filename="x">
+          <frame_name>missing_frame</frame_name></plugin></sensor></sensor>
+        <plugin name="b" filename="x"><bodyName>no_body</bodyName></plugin></gazebo>
+      <gazebo reference="j"><sensor type="imu" name="u"><plugin name="q" filename="x">
+        <frameName>a2</frameName></plugin></sensor></gazebo></robot>"""
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot}, select=("U615",))
+    assert found == [("robot.urdf", 5, "U615"), ("robot.urdf", 6, "U615"),
+                     ("robot.urdf", 7, "U615")]
+    assert [f.message.split(";")[0] for f in findings] == [
+        "<frame_name> 'missing_frame' is not a link, so TF cannot place the data stamped with it",
+        "<bodyName> 'no_body' is not a link, so TF cannot place the data stamped with it",
+        "sensor 'u' is on joint 'j', not a link"]
+
+
 def test_diffbot_wheel_separation_changed(tmp_path):
     findings = broken_copy(tmp_path, "diffbot", "diffbot.urdf.xacro",
                            "<wheel_separation>${wheel_separation}</wheel_separation>",

@@ -89,6 +89,20 @@ def test_classic_names_in_a_gz_system(tmp_path):
     assert "Gazebo Classic's name" in findings[0].message
 
 
+def test_a_plugin_is_made_once_for_each_library_and_read_the_same():
+    """The rules ask ``plugin`` of each ``<plugin>`` element, several times (613 asks on the
+    corpus): the same Plugin for every element loading the same library, whatever its path."""
+    from lxml import etree
+
+    first, second = (etree.fromstring(f'<plugin name="d" filename="{name}"/>') for name in
+                     ("libgazebo_ros_diff_drive.so", "/opt/ros/lib/libgazebo_ros_diff_drive.so"))
+    made = vocabulary.plugin(first)
+    assert made is vocabulary.plugin(second)
+    assert (made.key, made.family) == ("gazebo_ros_diff_drive", "classic")
+    assert "wheelSeparation" in made.versions["ros1"]
+    assert vocabulary.plugin(etree.fromstring('<plugin filename="libvendor.so"/>')) is None
+
+
 def test_plugin_keys():
     assert vocabulary.plugin_key("libgazebo_ros_diff_drive.so") == "gazebo_ros_diff_drive"
     assert vocabulary.plugin_key("libignition-gazebo6-diff-drive-system.so") == "gz-sim:diff-drive"

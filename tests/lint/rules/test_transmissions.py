@@ -340,6 +340,21 @@ def test_a_ros2_control_block_of_3000_joints_looks_for_its_plugin_once(tmp_path,
     assert len(asked) == 1, len(asked)
 
 
+def test_each_transmissions_joints_are_read_once_per_robot(tmp_path, monkeypatch):
+    """Eight rules and loaders ask for the joints of each transmission (1,878 reads of the
+    corpus's 248, lxml's findall three times each): read once per robot, the same findings."""
+    from urdftool.description import actuation
+
+    read = []
+    reading = actuation._transmission_joints
+    monkeypatch.setattr(actuation, "_transmission_joints",
+                        lambda transmission: read.append(transmission.get("name")) or
+                        reading(transmission))
+    body = tx() + tx(joint="head_jnt", name="u") + tx(joint="cam_joint", name="v")
+    assert codes(tmp_path, body) == ["U501", "U502"]
+    assert sorted(read) == ["t", "u", "v"]
+
+
 def test_no_plugin_as_checked_when_every_launch_file_builds_it_otherwise_is_a_warning(tmp_path):
     # lbr-stack: mode defaults to 'true', which no xacro:if of the hardware macro takes, and
     # every launch file gives mode:=mock|gazebo|hardware (through a mixin of another package)

@@ -18,7 +18,7 @@ from urdftool.description.inputs import MeshLimits
 from urdftool.description.meshes.reading import NOT_FINITE, NOT_WELL_FORMED, beyond_range, \
     check_size, collada_unit, finite_scale, mesh_bytes, read_once, recovered_collada, \
     refuse_too_far, refuse_too_many
-from urdftool.description.meshes.run_cache import once, stamp_of
+from urdftool.description.meshes.run_cache import limits_key, once, stamp_of
 from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem
 
@@ -54,7 +54,7 @@ def _arrays_once(path: Path, uri: str, limits: MeshLimits, stamp):
         refuse_too_many(uri, found.triangles, limits)
         return found, found.nbytes
 
-    return once((str(path), stamp, limits, "arrays"), uri, compute)
+    return once((str(path), stamp, limits_key(limits), "arrays"), uri, compute)
 
 
 def _collada_arrays(path: Path, uri: str, data: bytes, limits: MeshLimits):
@@ -285,7 +285,7 @@ def mesh_facts(robot, uri: str, scale=(1.0, 1.0, 1.0),
     as :func:`load_mesh` does. Each file is read once per run and measured once per scale: STL,
     COLLADA and plain OBJ files without trimesh, other formats through it."""
     limits = limits or robot.mesh_limits
-    key = (mesh_facts, uri, tuple(scale), limits)
+    key = (mesh_facts, uri, tuple(scale), limits_key(limits))
     found = robot.memo(key, lambda: _facts_outcome(robot, uri, scale, limits))
     if isinstance(found, MeshProblem):
         raise found
@@ -320,7 +320,7 @@ def _facts_outcome(robot, uri: str, scale, limits: MeshLimits):
             facts = MeshFacts(vertices, faces, arrays.metadata, watertight=watertight)
         return facts, facts.nbytes  # unscaled, the arrays' bytes: counted twice, an upper bound
 
-    return once((str(path), stamp, limits, "facts", scale), uri, compute)
+    return once((str(path), stamp, limits_key(limits), "facts", scale), uri, compute)
 
 
 def _merged_scaled(arrays: _Arrays, scale):

@@ -34,7 +34,7 @@ from urdftool.description.xml import entity_uses
 from urdftool.description.files import TooLarge, inside, read_regular
 from urdftool.description.inputs import MeshLimits
 from urdftool.description.meshes.counting import triangle_count
-from urdftool.description.meshes.run_cache import once, stamp_of
+from urdftool.description.meshes.run_cache import limits_key, once, stamp_of
 from urdftool.description.meshes.uris import resolve
 from urdftool.errors import MeshProblem, described
 from urdftool.numbers import MAX_COORDINATE
@@ -456,7 +456,7 @@ def read_once(path: Path, uri: str, limits: MeshLimits):
     """``_read_mesh`` once per run for a file as it is now (keyed by the resolved path, its
     :func:`stamp_of` and the limits). Returns the mesh or the MeshProblem."""
     stamp = stamp_of(path)
-    return once((str(path), stamp, limits), uri,
+    return once((str(path), stamp, limits_key(limits)), uri,
                  lambda: (_read_mesh(path, uri, limits), stamp[2] if stamp else 0))
 
 

@@ -44,6 +44,14 @@ def stamp_of(path: Path):
     return identity(path)
 
 
+def limits_key(limits) -> tuple[int, int]:
+    """A :class:`~urdftool.description.inputs.MeshLimits` as a part of a key: its numbers,
+    which are hashed in C, where the record's own hash is a call of Python, made again each
+    time the key is hashed (the cache hashes a key several times a look-up: 13,000 calls on
+    the corpus)."""
+    return limits.max_triangles, limits.max_bytes
+
+
 def once(key: tuple, uri: str, compute):
     """``compute()`` -> (outcome, bytes held) once per run for ``key`` (which starts with the
     path and its :func:`stamp_of`: a changed file is read again); a MeshProblem is kept under the

@@ -363,7 +363,7 @@ def _offers(robot, controller: Controller, name: str) -> set | None:
     offered = command_interfaces(robot)
     ros2 = ros2_command_interfaces(robot)
     unknown = robot.memo(_offers, lambda: {
-        joint.name for t in transmissions(robot) for joint in transmission_joints(t)
+        joint.name for t in transmissions(robot) for joint in transmission_joints(robot, t)
         if any(not interface_kind(i.text)[0] for i in joint.interfaces)})  # U503
     if name not in robot.joints:
         return None

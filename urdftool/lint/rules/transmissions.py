@@ -85,7 +85,7 @@ def transmission_unknown_joint(robot):
     Good: ``<joint name="head_joint">``, a joint of the robot
     """
     for transmission in transmissions(robot):
-        joints = transmission_joints(transmission)
+        joints = transmission_joints(robot, transmission)
         if not joints:
             yield transmission, f"{_label(transmission)} has no <joint>"
         for joint in joints:
@@ -107,7 +107,7 @@ def transmission_fixed_joint(robot):
     Good: transmissions only on revolute, continuous and prismatic joints
     """
     for transmission in transmissions(robot):
-        for joint in transmission_joints(transmission):
+        for joint in transmission_joints(robot, transmission):
             target = robot.joints.get(joint.name)
             if joint.interfaces and not _commands(joint):
                 continue  # read-only (franka_hw/FrankaModelInterface names the flange joint)
@@ -145,7 +145,7 @@ def unknown_hardware_interface(robot):
         kind = transmission.findtext("type") or transmission.get("type") or ""
         if is_ros2_form(transmission) or not kind.startswith("transmission_interface/"):
             continue
-        for joint in transmission_joints(transmission):
+        for joint in transmission_joints(robot, transmission):
             if not joint.interfaces:
                 yield joint.element, _if_ros(unsaid, (
                     f"{_label(transmission)}: joint '{joint.name}' has no <hardwareInterface>; "
@@ -245,7 +245,7 @@ def duplicate_transmission(robot):
     """
     first: dict[tuple, str] = {}
     for transmission in transmissions(robot):
-        for joint in transmission_joints(transmission):
+        for joint in transmission_joints(robot, transmission):
             if not joint.name:
                 continue
             kinds = _commands(joint) if joint.interfaces else {"(any)"}
@@ -286,7 +286,7 @@ def unactuated_joint(robot):
     plugin = control_plugin(robot)
     if plugin is None or plugin.tag != "ros2_control" and not _known_loader(plugin):
         return  # a vendor's control plugin (libhsrb_gazebo_ros_control.so) may publish them all
-    actuated = {joint.name for t in transmissions(robot) for joint in transmission_joints(t)}
+    actuated = {joint.name for t in transmissions(robot) for joint in transmission_joints(robot, t)}
     actuated.update(joint.get("name") for _, joint in ros2_control_joints(robot))
     actuated.update(diff_drive_wheels(robot))
     actuated.update(published_by_gazebo(robot))
@@ -323,7 +323,8 @@ def _misspelt_entries(robot, unactuated: list) -> dict:
     entries = [("the <ros2_control> joint", element, element.get("name") or "")
                for _, element in ros2_control_joints(robot)]
     entries += [(f"{_label(transmission)}'s joint", joint.element, joint.name or "")
-                for transmission in transmissions(robot) for joint in transmission_joints(transmission)]
+                for transmission in transmissions(robot)
+                for joint in transmission_joints(robot, transmission)]
     found: dict = {}
     for label, element, written in entries:
         if written and written not in robot.joints:
@@ -377,7 +378,7 @@ def _actuation(robot, plugin, name: str):
                  *(f'  <{tag} name="{attribute(kind)}"/>' for tag, kind in kinds), "</joint>"]
         return append_child(robot, plugin, "\n".join(lines))
     used = [(interface.text or "").strip() for t in transmissions(robot)
-            for joint in transmission_joints(t) for interface in joint.interfaces]
+            for joint in transmission_joints(robot, t) for interface in joint.interfaces]
     # the most used; of those used as often, the first written (a set's order of strings
     # changes with the hash seed: the fix changed from run to run)
     interface = max(dict.fromkeys(used), key=used.count) if used else \
@@ -414,7 +415,7 @@ def hardware_interface_prefix(robot):
     for transmission in transmissions(robot):
         if is_ros2_form(transmission):
             continue
-        for joint in transmission_joints(transmission):
+        for joint in transmission_joints(robot, transmission):
             for interface in [] if joint.in_actuator else joint.interfaces:  # U503 says move it
                 text = (interface.text or "").strip()
                 if text in _DEPRECATED_BARE:
