@@ -142,6 +142,10 @@ class Finding(Frozen):
         urdftool.errors.available's "available links: a, b, ..."). A report for people writes each once per file and
         refers to it after (urdftool.report.text_format); the machine formats keep every
         message whole
+    urdfdom_takes: True for a finding of a code urdfdom refuses for
+        (:data:`~urdftool.lint.engine.URDFDOM_REFUSES`) on a shape urdfdom parses all the same,
+        as its rule knows (a joint's ``name=""``, where a joint without the attribute is refused):
+        the commands that pose a robot do not refuse it as urdfdom's refusal
     """
 
     code: str
@@ -153,15 +157,17 @@ class Finding(Frozen):
     target: str | None
     not_checked: bool
     repeated: tuple[tuple[str, str, str], ...]
+    urdfdom_takes: bool
 
     __slots__ = ("code", "name", "severity", "message", "location", "fix", "target",
-                 "not_checked", "repeated")
+                 "not_checked", "repeated", "urdfdom_takes")
 
     def __init__(self, code: str, name: str, severity: Severity, message: str, location: Location,
                  fix: Fix | None = None, target: str | None = None,
-                 not_checked: bool = False, repeated: tuple = ()) -> None:
+                 not_checked: bool = False, repeated: tuple = (),
+                 urdfdom_takes: bool = False) -> None:
         set_code, set_name, set_severity, set_message, set_location, set_fix, set_target, \
-            set_not_checked, set_repeated = self._setters  # (10,000 findings: a large robot's)
+            set_not_checked, set_repeated, set_takes = self._setters  # (10,000 findings)
         set_code(self, code)
         set_name(self, name)
         set_severity(self, severity)
@@ -171,6 +177,7 @@ class Finding(Frozen):
         set_target(self, target)
         set_not_checked(self, not_checked)
         set_repeated(self, repeated)
+        set_takes(self, urdfdom_takes)
 
     @property
     def file(self) -> str:

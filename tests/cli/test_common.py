@@ -285,3 +285,17 @@ def test_a_d_h_table_that_does_not_fit_is_a_usage_error_named_by_its_file(run_cl
         assert result.exit_code == 2, result.output
         assert result.stderr.splitlines() == [f"urdftool: error: {message}"] or \
             result.stderr.startswith(f"urdftool: error: {message}"), result.stderr
+
+
+@pytest.mark.parametrize("command", ["tree", "fk"])
+def test_an_only_link_without_a_name_is_said_as_that_not_as_no_link(tmp_path, run_cli, command):
+    """check_urdf takes ``<link/>`` alone (a link named ''), so U103 there is no refusal of
+    urdfdom; urdftool's model names every link, and the commands said "robot has no <link>
+    elements" of it. A ``name=""`` link is posed."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r">\n<link/></robot>')
+    result = run_cli(command, "--timeout", "0", "--max-memory", "0", path)
+    assert result.exit_code == 1
+    assert f"{path}:2: error: the robot's only <link> has no name attribute" in result.stderr
+    path.write_text('<robot name="r">\n<link name=""/></robot>')
+    assert run_cli(command, "--timeout", "0", "--max-memory", "0", path).exit_code == 0

@@ -101,69 +101,108 @@ def _loop_below(size: int) -> str:
 # (run under a timeout: "hangs" is its outcome, not a failure of the test) and urdftool's errors,
 # judged. AGREES: urdftool refuses (with a code of URDFDOM) exactly where check_urdf refuses or
 # hangs. STRICTER: check_urdf accepts and urdftool refuses; the reason, measured, is written.
+# The last item is what `tree` and `fk` do with it (POSES: exit 0, tree printing what
+# check_urdf prints; REFUSES: exit 1 at the errors' lines): they refuse a shape urdfdom takes
+# only where urdftool's own model cannot pose it (fk: a link with two parents, U107; mimic
+# loops, which no value satisfies), never as urdfdom's refusal.
 AGREES = "agrees"
+POSES, REFUSES = "poses", "refuses"
 SHAPES = {
     # a loop below the root: urdfdom's initRoot finds the root, its tree walk then loops
-    "self-joint below the root": (_loop_below(1), "hangs", {"U107", "U109", "U110"}, AGREES),
-    "loop of 2 below the root": (_loop_below(2), "hangs", {"U107", "U109"}, AGREES),
-    "loop of 3 below the root": (_loop_below(3), "hangs", {"U107", "U109"}, AGREES),
-    "loop of 8 below the root": (_loop_below(8), "hangs", {"U107", "U109"}, AGREES),
+    "self-joint below the root": (_loop_below(1), "hangs", {"U107", "U109", "U110"}, AGREES,
+                                  (REFUSES, REFUSES)),
+    "loop of 2 below the root": (_loop_below(2), "hangs", {"U107", "U109"}, AGREES,
+                                 (REFUSES, REFUSES)),
+    "loop of 3 below the root": (_loop_below(3), "hangs", {"U107", "U109"}, AGREES,
+                                 (REFUSES, REFUSES)),
+    "loop of 8 below the root": (_loop_below(8), "hangs", {"U107", "U109"}, AGREES,
+                                 (REFUSES, REFUSES)),
     "loop below a branch": (_link("r", "a", "b", "c", "d") + _joint("j0", "r", "a")
                             + _joint("j1", "a", "b") + _joint("jd", "a", "d")
                             + _joint("j2", "b", "c") + _joint("j3", "c", "b"),
-                            "hangs", {"U107", "U109"}, AGREES),
+                            "hangs", {"U107", "U109"}, AGREES, (REFUSES, REFUSES)),
     # a loop through every link, or through the root: no link without a parent
     "self-joint on the only link": (_link("r") + _joint("j", "r", "r"), "refuses",
-                                    {"U109", "U110"}, AGREES),
+                                    {"U109", "U110"}, AGREES, (REFUSES, REFUSES)),
     "a joint whose parent is its own child": (_link("r", "a") + _joint("j0", "r", "a")
                                               + _joint("j1", "a", "r"), "refuses", {"U109"},
-                                              AGREES),
+                                              AGREES, (REFUSES, REFUSES)),
     "loop of 3 through the root": (_link("r", "a", "b") + _joint("j0", "r", "a")
                                    + _joint("j1", "a", "b") + _joint("j2", "b", "r"),
-                                   "refuses", {"U109"}, AGREES),
+                                   "refuses", {"U109"}, AGREES, (REFUSES, REFUSES)),
     "duplicate joint name on a loop": (_link("r", "a", "b") + _joint("j", "r", "a")
                                        + _joint("j", "a", "b") + _joint("j2", "b", "a"),
-                                       "refuses", {"U102", "U107", "U109"}, AGREES),
+                                       "refuses", {"U102", "U107", "U109"}, AGREES,
+                                       (REFUSES, REFUSES)),
     "duplicate joint name": (_link("r", "a", "b") + _joint("j", "r", "a") + _joint("j", "r", "b"),
-                             "refuses", {"U102"}, AGREES),
+                             "refuses", {"U102"}, AGREES, (REFUSES, REFUSES)),
+    # names: urdfdom refuses a joint without a name attribute, takes a joint's name=""; it reads
+    # a link without one as a link named '', which no joint can attach to (link="" is "missing
+    # a parent and/or child link specification"), so a second root beside any other link
     "empty child link name": (_link("r", "") + _joint("j", "r", ""), "refuses",
-                              {"U103", "U104"}, AGREES),
+                              {"U103", "U104"}, AGREES, (REFUSES, REFUSES)),
+    "link without a name as a joint's child": (
+        _link("r") + "<link/>" + _joint("j", "r", ""), "refuses", {"U103", "U104"}, AGREES,
+        (REFUSES, REFUSES)),
+    "empty link name as the root": (_link("", "a") + _joint("j", "", "a"), "refuses",
+                                    {"U103", "U104"}, AGREES, (REFUSES, REFUSES)),
+    "empty link name beside a link": (_link("r", ""), "refuses", {"U103", "U108"}, AGREES,
+                                      (REFUSES, REFUSES)),
+    "link without a name beside a link": (_link("r") + "<link/>", "refuses", {"U103"}, AGREES,
+                                          (REFUSES, REFUSES)),
+    "two links named empty": (_link("", ""), "refuses", {"U101", "U103"}, AGREES,
+                              (REFUSES, REFUSES)),
+    "joint without a name": (_link("r", "a") + '<joint type="fixed"><parent link="r"/>'
+                             '<child link="a"/></joint>', "refuses", {"U103"}, AGREES,
+                             (REFUSES, REFUSES)),
+    "two joints named empty": (_link("r", "a", "b") + _joint("", "r", "a") + _joint("", "r", "b"),
+                               "refuses", {"U102", "U103"}, AGREES, (REFUSES, REFUSES)),
+    "a joint named empty and one without a name": (
+        _link("r", "a", "b") + _joint("", "r", "a") + '<joint type="fixed"><parent link="r"/>'
+        '<child link="b"/></joint>', "refuses", {"U103"}, AGREES, (REFUSES, REFUSES)),
     # check_urdf accepts
     "loop beside the tree": (_link("r", "x", "a", "b") + _joint("j0", "r", "x")
                              + _joint("j1", "a", "b") + _joint("j2", "b", "a"), "accepts",
                              {"U109"}, "stricter: urdfdom builds the tree from the root and drops "
                              "links a and b silently (its listing shows r -> x only); any "
-                             "consumer of the tree loses them"),
+                             "consumer of the tree loses them", (POSES, POSES)),
     "a link with two parents, no loop": (_link("r", "a", "b") + _joint("j0", "r", "a")
                                          + _joint("j1", "r", "b") + _joint("j2", "a", "b"),
                                          "accepts", {"U107"}, "stricter, and not a URDFDOM "
                                          "code: urdfdom lists b twice (under r and under a), "
-                                         "its parent is the last joint read"),
-    "empty joint name": (_link("r", "a") + '<joint name="" type="fixed"><parent link="r"/>'
-                         '<child link="a"/></joint>', "accepts", {"U103"},
+                                         "its parent is the last joint read", (POSES, REFUSES)),
+    "empty joint name": (_link("r", "a") + _joint("", "r", "a"), "accepts", {"U103"},
                          "stricter: urdfdom refuses a joint without a name attribute but "
                          "takes name=\"\"; a joint no /joint_states, controller or "
-                         "transmission can name"),
+                         "transmission can name", (POSES, POSES)),
     "empty robot name": ('<robot name=""><link name="r"/></robot>', "accepts", {"U011"},
                          "stricter: urdfdom refuses a robot without a name attribute but takes "
                          "name=\"\" (check_urdf prints 'robot name is: '); the name is what "
-                         "an SRDF and a simulator's model are matched by"),
+                         "an SRDF and a simulator's model are matched by", (POSES, POSES)),
     "empty link name, the only link": ('<link name=""/>', "accepts", {"U103"},
                                        "stricter: urdfdom takes name=\"\" (its root is "
-                                       "''); no joint can attach to it"),
+                                       "''); no joint can attach to it", (POSES, POSES)),
+    "link without a name, the only link": ("<link/>", "accepts", {"U103"},
+                                           "stricter: urdfdom logs 'No name given for the "
+                                           "link.' and takes it as a link named ''; urdftool's "
+                                           "model names every link, so its commands say so "
+                                           "and stop", (REFUSES, REFUSES)),
     "mimic joints that mimic each other": (_link("r", "a", "b") + _joint("ja", "r", "a", "jb")
                                            + _joint("jb", "r", "b", "ja"), "accepts",
                                            {"U211"}, "stricter, and not a URDFDOM code: "
                                            "urdfdom does not read <mimic> against the joints; "
-                                           "no value satisfies a loop of mimics"),
+                                           "no value satisfies a loop of mimics",
+                                           (POSES, REFUSES)),
     "mimic loop of 3": (_link("r", "a", "b", "c") + _joint("ja", "r", "a", "jc")
                         + _joint("jb", "r", "b", "ja") + _joint("jc", "r", "c", "jb"),
-                        "accepts", {"U211"}, "stricter, and not a URDFDOM code (as above)"),
+                        "accepts", {"U211"}, "stricter, and not a URDFDOM code (as above)",
+                        (POSES, REFUSES)),
     "a joint mimicking itself": (_link("r", "a") + _joint("ja", "r", "a", "ja"), "accepts",
-                                 {"U210"}, "stricter, and not a URDFDOM code (as above)"),
+                                 {"U210"}, "stricter, and not a URDFDOM code (as above)",
+                                 (POSES, REFUSES)),
     "a mimic chain without a loop": (_link("r", "a", "b", "c") + _joint("ja", "r", "a", "")
                                      + _joint("jb", "r", "b", "ja") + _joint("jc", "r", "c", "jb"),
-                                     "accepts", set(), AGREES),
+                                     "accepts", set(), AGREES, (POSES, POSES)),
 }
 
 
@@ -179,16 +218,18 @@ def outcome(verdict) -> str:
 
 
 @pytest.mark.parametrize("shape", sorted(SHAPES))
-def test_parity_on_shapes_check_urdf_handles_badly(shape, tmp_path):
+def test_parity_on_shapes_check_urdf_handles_badly(shape, tmp_path, run_cli):
     """Each shape's check_urdf outcome as recorded, urdftool's errors as recorded, and parity
     wherever the row says they agree; where urdftool is stricter, check_urdf accepts (a hang or
     a refusal would be agreement) and the row says why. A hang costs its timeout, a core spun
     for all of it: 0.5 s for a shape recorded as hanging (it never returns: 2 s proved no more,
     and the five cost 10 s of CPU), the usual 20 s for the others, so that a slow start on a
-    busy machine is never taken for a hang (a healthy run of these files takes 10 ms)."""
+    busy machine is never taken for a hang (a healthy run of these files takes 10 ms). Then
+    what `tree` and `fk` do with it, as the row says; `tree` prints what check_urdf prints
+    where it poses it."""
     from urdftool.lint.engine import CheckOptions, load_and_check
 
-    body, expected, codes, judged = SHAPES[shape]
+    body, expected, codes, judged, (tree, fk) = SHAPES[shape]
     path = tmp_path / "shape.urdf"
     path.write_text(body if body.startswith("<robot") else f'<robot name="r">{body}</robot>')
     verdict = check_urdf(path, timeout=0.5 if expected == "hangs" else CHECK_URDF_TIMEOUT)
@@ -199,6 +240,13 @@ def test_parity_on_shapes_check_urdf_handles_badly(shape, tmp_path):
         assert_parity(shape, verdict, result)
     else:
         assert expected == "accepts" and judged.startswith("stricter") and codes
+    for command, does in (("tree", tree), ("fk", fk)):
+        ran = run_cli(command, *IN_PROCESS, path)
+        assert ran.exit_code == (0 if does == POSES else 1), (command, ran.output)
+        if does == REFUSES and expected != "accepts":  # urdfdom's refusal, at its lines
+            assert f"{path.name}:1: error U" in ran.stderr, (command, ran.output)
+    if tree == POSES:
+        assert run_cli("tree", *IN_PROCESS, path).stdout == verdict.stdout
 
 
 def test_outcome_tells_a_hang_from_a_crash_from_a_refusal():

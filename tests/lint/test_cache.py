@@ -722,6 +722,20 @@ def test_a_kept_finding_keeps_the_parts_a_report_says_once():
         cache_module._finding({**cache_module._record(finding), "repeated": [["why", 1]]})
 
 
+def test_a_kept_finding_keeps_whether_urdfdom_takes_it():
+    """Finding.urdfdom_takes is kept: a served result tells a refusal of urdfdom from a shape it
+    parses as the check did; a finding without it keeps no key."""
+    from urdftool.diagnostics import Finding, Location, Severity
+
+    finding = Finding("U103", "missing-name", Severity.ERROR, "<joint> has an empty name",
+                      Location("r.urdf", 3), urdfdom_takes=True)
+    assert cache_module._finding(json.loads(json.dumps(cache_module._record(finding)))) == finding
+    assert "urdfdom_takes" not in cache_module._record(Finding(
+        "U103", "missing-name", Severity.ERROR, "m", Location("r.urdf", 3)))
+    with pytest.raises(TypeError):
+        cache_module._finding({**cache_module._record(finding), "urdfdom_takes": 1})
+
+
 def test_a_file_the_cache_holds_still_says_what_its_check_read(robot, tmp_path, monkeypatch):
     """A result served from the cache names the files its check read, as a worker's does
     (check's warning of a xacro argument no file names reads them: a hit said nothing)."""

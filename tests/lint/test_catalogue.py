@@ -197,6 +197,24 @@ def test_a_finding_may_be_less_severe_than_its_rule_never_more():
         conditional.rule.finding("m", where, None, Severity.ERROR)
 
 
+def test_a_taken_message_makes_a_finding_urdfdom_takes():
+    """A rule says urdfdom parses the shape a finding is about with a Taken message; the
+    finding keeps the rule's severity, and a plain message makes a refusal."""
+    from urdftool.diagnostics import Location
+    from urdftool.lint.catalogue import Taken
+
+    @rule("U999", "shape", Severity.ERROR)
+    def shape(robot):
+        """A shape urdfdom parses in one form and refuses in another."""
+        yield None, "x"
+
+    where = Location("r.urdf", 1)
+    taken = shape.rule.finding(Taken("m"), where)
+    assert taken.urdfdom_takes and taken.severity == Severity.ERROR and taken.message == "m"
+    assert type(taken.message) is str
+    assert not shape.rule.finding("m", where).urdfdom_takes
+
+
 def test_the_engine_stamps_a_findings_own_severity(tmp_path):
     from urdftool.lint.engine import stamp
 

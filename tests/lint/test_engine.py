@@ -497,3 +497,23 @@ def test_an_empty_robot_name_is_no_refusal_of_urdfdom_and_a_missing_one_is(tmp_p
     assert [f.code for f in load_and_check(str(path), CheckOptions()).findings] == ["U011"]
     path.write_text('<robot><link name="a"/></robot>')
     assert [f.code for f in engine.urdfdom_refusals(load(str(path)))] == ["U011"]
+
+
+def test_urdfdom_refusals_are_decided_per_finding(tmp_path):
+    """One robot with a joint's name="" (check_urdf takes it) and a joint without the attribute
+    (check_urdf: "unnamed joint found"): U103 twice, one refusal; U109 on a loop beside the tree
+    (check_urdf drops its links) is none."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="r"/><link name="a"/><link name="b"/>'
+                    '<joint name="" type="fixed"><parent link="r"/><child link="a"/></joint>'
+                    '<joint type="fixed"><parent link="r"/><child link="b"/></joint></robot>')
+    [refusal] = engine.urdfdom_refusals(load(str(path)))
+    assert (refusal.code, refusal.message) == ("U103", "<joint> has no name attribute")
+    assert [f.code for f in load_and_check(str(path), CheckOptions()).findings] == \
+        ["U103", "U103"]
+    path.write_text('<robot name="r"><link name="r"/><link name="a"/><link name="b"/>'
+                    '<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>'
+                    '<joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint>'
+                    '</robot>')
+    assert engine.urdfdom_refusals(load(str(path))) == []
+    assert "U109" in {f.code for f in load_and_check(str(path), CheckOptions()).findings}

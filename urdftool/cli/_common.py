@@ -271,13 +271,22 @@ def refuse_refused(robot, posing: bool = False) -> None:
 
 def _refuse_linkless(robot) -> None:
     """A robot without a link has nothing to compute or draw: urdfdom's refusal (U106) at its
-    line, exit 1, as ``tree`` gives it. Each command found its own words for it before: 'no
+    line, exit 1, as ``tree`` gives it; an only link without a name, which urdfdom takes as
+    ``''``, said as that at its line. Each command found its own words for it before: 'no
     root link (a cycle?)', an empty graph, '(0 links)', a picture of 0 triangles."""
     from urdftool.lint.engine import urdfdom_refusals
 
     refusals = urdfdom_refusals(robot)
+    unnamed = robot.children("link")  # (links, none of them named: an only <link/>)
     if refusals:
         report_findings(robot.path, refusals)
+    elif unnamed:
+        where = robot.locate(unnamed[0])
+        message = ("the robot's only <link> has no name attribute: urdfdom takes it as a link "
+                   "named '' (check_urdf: 'root Link:  has 0 child(ren)'), urdftool's model "
+                   "names every link; give it a name")
+        say(f"{where}: error: {message}", err=True)
+        _error_document(message=message, location=where)
     else:
         say(f"{robot.locate(robot.root)}: error: robot has no <link> elements", err=True)
         _error_document(message="robot has no <link> elements", location=robot.locate(robot.root))

@@ -71,9 +71,9 @@ from urdftool.description.record import entry_key
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity, display_path
 from urdftool.errors import UsageError
 
-SCHEMA = 6  # 3: an entry's dependencies are its check's record; 4: findings' repeated parts;
+SCHEMA = 7  # 3: an entry's dependencies are its check's record; 4: findings' repeated parts;
 # 5: the names a message lists as available among those parts (urdftool.errors.available);
-# 6: an available list's detail says how many ("31 links")
+# 6: an available list's detail says how many ("31 links"); 7: whether urdfdom takes a finding
 FOLDER = ".urdftool_cache"
 MAX_ENTRY_BYTES = 16 * 1024 * 1024
 _NO_KEY = ("no signing key: $XDG_CACHE_HOME/urdftool/key (or ~/.cache/urdftool/key) could not "
@@ -327,6 +327,8 @@ def _record(finding: Finding) -> dict:
         record["target"] = finding.target
     if finding.repeated:
         record["repeated"] = [list(part) for part in finding.repeated]
+    if finding.urdfdom_takes:
+        record["urdfdom_takes"] = True
     return record
 
 
@@ -369,9 +371,12 @@ def _finding(record: dict) -> Finding:
     repeated = tuple(tuple(part) for part in record.get("repeated", ()))
     if not all(len(part) == 3 and all(type(item) is str for item in part) for part in repeated):
         raise TypeError("malformed finding")
+    takes = record.get("urdfdom_takes", False)
+    if type(takes) is not bool:
+        raise TypeError("malformed finding")
     return Finding(code, name, _SEVERITIES[record["severity"]], message,
                    _location(record["location"]), None if fix is None else _fix(fix), target,
-                   repeated=repeated)
+                   repeated=repeated, urdfdom_takes=takes)
 
 
 def _write(path: Path, text: str, private: bool = False) -> None:

@@ -77,6 +77,16 @@ class Conditional(Said):
         return made
 
 
+class Taken(Said):
+    """A finding's message when urdfdom (check_urdf, robot_state_publisher) parses the shape
+    the finding is about, though it refuses others under the same code (a joint's ``name=""``
+    where one without the attribute is refused; a loop of joints beside the tree, where one
+    with no root is refused): the finding is the rule's as it is, and the commands that pose a
+    robot do not refuse it as urdfdom's refusal (:attr:`~urdftool.diagnostics.Finding.
+    urdfdom_takes`, asked by :func:`urdftool.lint.engine.urdfdom_refusals`). Checked against
+    the real check_urdf by tests/integration/test_parity.py's table of shapes."""
+
+
 def weighed(message: str, certain: bool = True, workspace: bool = False,
             repeated: tuple = ()) -> str:
     """A file or package not found, as a finding's message at the severity what is known of it
@@ -144,7 +154,8 @@ class Rule(Frozen):
         """A finding of this rule at ``location``, with the fix that would remove it if any;
         ``severity`` lowers the rule's for a finding that holds only under a condition (it is
         never raised: ValueError); a :class:`Conditional` message is reported at its own
-        severity when that is below the rule's. ``not_checked``: the finding says its file's
+        severity when that is below the rule's; a :class:`Taken` message makes a finding
+        urdfdom parses all the same. ``not_checked``: the finding says its file's
         robot was not checked (:attr:`~urdftool.diagnostics.Finding.not_checked`).
         ``repeated``: the parts of the message others say word for word
         (:attr:`~urdftool.diagnostics.Finding.repeated`), with those of a
@@ -159,7 +170,8 @@ class Rule(Frozen):
         if severity is None and isinstance(message, Conditional):
             severity = min(self.severity, message.severity, key=_RANK.__getitem__)
         return Finding(self.code, self.name, Severity(severity or self.severity), str(message),
-                       location, fix, self.target, not_checked, repeated)
+                       location, fix, self.target, not_checked, repeated,
+                       isinstance(message, Taken))
 
 
 def rule(code: str, name: str, severity: Severity):

@@ -44,10 +44,10 @@ URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
 # parent joints (U107), which urdfdom and Pinocchio hang under the joint whose name sorts last,
 # urdftool's kinematics and yourdfpy under neither (they stopped at it in their own words)
 POSING_REFUSES = URDFDOM_REFUSES | {"U107"}
-# ... but for what urdfdom takes under those codes, by what the robot holds: an empty
-# <robot name=""> (U011; check_urdf prints "robot name is: ", Pinocchio builds it), which every
-# command refused before as if urdfdom had
-URDFDOM_TAKES = {"U011": lambda robot: robot.root.get("name") == ""}
+# ... but not a finding its rule says urdfdom takes (Finding.urdfdom_takes, from a
+# lint.catalogue.Taken message): an empty <robot name=""> (U011; check_urdf prints "robot name
+# is: "), a joint's name="" or an only link's missing or empty name (U103), a loop beside the
+# tree (U109; check_urdf drops its links), which every command refused before as if urdfdom had
 _HINTS = {"too-large": lambda subject: " (raise it with --max-file-size)",
           "arg": lambda subject: f"; pass it as {subject}:=VALUE (or --arg {subject}=VALUE)"}
 
@@ -208,11 +208,11 @@ def target_versions(targets) -> dict:
 def urdfdom_refusals(robot, codes=URDFDOM_REFUSES) -> list[Finding]:
     """Why urdfdom (check_urdf, robot_state_publisher) would refuse a loaded robot: the errors
     of :data:`URDFDOM_REFUSES` (or of ``codes``: :data:`POSING_REFUSES`), located, sorted;
-    empty when it would parse it. Inline suppressions do not apply: they cannot make urdfdom
+    empty when it would parse it; a finding its rule says urdfdom takes
+    (:attr:`~urdftool.diagnostics.Finding.urdfdom_takes`) is not one. Inline suppressions do not apply: they cannot make urdfdom
     accept a file."""
     found = _run_rules(robot, codes.__contains__)
-    taken = {code for code, takes in URDFDOM_TAKES.items() if code in codes and takes(robot)}
-    return sorted({f for f in found if f.severity.value == "error" and f.code not in taken},
+    return sorted({f for f in found if f.severity.value == "error" and not f.urdfdom_takes},
                   key=Finding.sort_key)
 
 

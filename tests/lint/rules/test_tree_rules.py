@@ -130,3 +130,65 @@ def test_an_empty_name_is_said_as_empty_not_as_missing(tmp_path):
         '<joint> has an empty name (name="")']
     assert [message for _, message in tree.joint_missing_endpoint(robot)] == [
         """joint '': <child> names no link (link="")""", "joint 'j': <child> has no link attribute"]
+
+
+def _robot(tmp_path, body: str):
+    path = tmp_path / "r.urdf"
+    path.write_text(f'<robot name="r">{body}</robot>')
+    return load(str(path))
+
+
+def _taken(rule, robot) -> list[tuple[str, bool]]:
+    """Each finding's message and whether its rule says urdfdom takes it."""
+    from urdftool.lint.catalogue import Taken
+
+    return [(str(message), isinstance(message, Taken)) for _, message in rule(robot)]
+
+
+def test_a_joint_s_empty_name_is_taken_by_urdfdom_and_a_missing_one_is_not(tmp_path):
+    """check_urdf takes a joint's name="" ("child(1): a") and refuses a joint without the
+    attribute ("unnamed joint found"), in one robot too: the fact is per finding."""
+    robot = _robot(tmp_path, '<link name="r"/><link name="a"/><link name="b"/>'
+                   '<joint name="" type="fixed"><parent link="r"/><child link="a"/></joint>'
+                   '<joint type="fixed"><parent link="r"/><child link="b"/></joint>')
+    assert _taken(tree.missing_name, robot) == [('<joint> has an empty name (name="")', True),
+                                                ("<joint> has no name attribute", False)]
+
+
+def test_two_joints_named_empty_are_not_taken(tmp_path):
+    """check_urdf: "joint '' is not unique"; U102 counts them (it said "defined 0 times")."""
+    robot = _robot(tmp_path, '<link name="r"/><link name="a"/><link name="b"/>'
+                   '<joint name="" type="fixed"><parent link="r"/><child link="a"/></joint>'
+                   '<joint name="" type="fixed"><parent link="r"/><child link="b"/></joint>')
+    assert [taken for _, taken in _taken(tree.missing_name, robot)] == [False, False]
+    assert [message for _, message in tree.duplicate_joint(robot)] == [
+        f"joint '' is defined 2 times (first at {robot.path}:1)"]
+
+
+def test_an_only_link_without_a_name_is_taken_and_one_beside_others_is_not(tmp_path):
+    """urdfdom reads a link without the attribute as one named '' (check_urdf logs "No name
+    given for the link." and parses it): the only link is its root; beside another it is a
+    second root ("Two root links found: [] and [r]")."""
+    for body in ('<link name=""/>', "<link/>"):
+        assert [taken for _, taken in _taken(tree.missing_name, _robot(tmp_path, body))] == [True]
+        assert [taken for _, taken in _taken(tree.missing_name, _robot(
+            tmp_path, '<link name="r"/>' + body))] == [False]
+
+
+def _fixed(name: str, parent: str, child: str) -> str:
+    return f'<joint name="{name}" type="fixed"><parent link="{parent}"/><child link="{child}"/></joint>'
+
+
+def test_a_loop_beside_the_tree_is_taken_and_one_below_or_through_the_root_is_not(tmp_path):
+    """check_urdf takes a loop no link of which hangs below the root (it drops its links),
+    hangs on one below the root and refuses one through every root ("No root link found")."""
+    beside = _robot(tmp_path, '<link name="r"/><link name="x"/><link name="a"/><link name="b"/>'
+                    + _fixed("j0", "r", "x") + _fixed("j1", "a", "b") + _fixed("j2", "b", "a"))
+    assert _taken(tree.kinematic_cycle, beside) == [
+        ("joints form a cycle through links b -> a -> b", True)]
+    below = _robot(tmp_path, '<link name="r"/><link name="a"/><link name="b"/>'
+                   + _fixed("j0", "r", "a") + _fixed("j1", "a", "b") + _fixed("j2", "b", "a"))
+    assert [taken for _, taken in _taken(tree.kinematic_cycle, below)] == [False]
+    through = _robot(tmp_path, '<link name="r"/><link name="a"/>'
+                     + _fixed("j0", "r", "a") + _fixed("j1", "a", "r"))
+    assert [taken for _, taken in _taken(tree.kinematic_cycle, through)] == [False]

@@ -7,7 +7,7 @@ codes (``urdftool.lint.engine.LOAD_CODES`` and ``NOTE_CODES``). U015 and U018 ar
 from urdftool.description.urdf import version_problem
 from urdftool.diagnostics import Location
 from urdftool.errors import PackageNotFound, close_names
-from urdftool.lint.catalogue import Conditional, Severity, declare, rule
+from urdftool.lint.catalogue import Conditional, Severity, Taken, declare, rule
 
 U001 = declare("U001", "malformed-xml", Severity.ERROR, """
     The file is not well-formed XML.
@@ -417,9 +417,9 @@ def robot_name_missing(robot):
 
     urdfdom (check_urdf, robot_state_publisher) refuses a robot without a ``name`` attribute.
     It takes ``name=""`` (check_urdf prints "robot name is: "): a robot without a name, which
-    an SRDF or a simulator's model, matched to a robot by its name, cannot be. The commands that pose a
-    robot take an empty name as urdfdom does (``lint.engine.URDFDOM_TAKES``). On a part of a
-    robot defined elsewhere (see U105, U106), a note: the robot that includes it has the name.
+    an SRDF or a simulator's model, matched to a robot by its name, cannot be. The commands that
+    pose a robot take an empty name as urdfdom does (its finding says urdfdom takes it:
+    ``lint.catalogue.Taken``). On a part of a robot defined elsewhere (see U105, U106), a note: the robot that includes it has the name.
     A warning naming the condition on a file xacro expands that no launch file of its
     repository builds: a file another package's robot includes needs none, since xacro keeps
     only the includer's ``<robot>`` (Autoware's ``<model>_description/urdf/vehicle.xacro``,
@@ -434,7 +434,7 @@ def robot_name_missing(robot):
         return
     if not _built_by_nothing_here(robot):
         yield robot.root, ('<robot> has no name attribute; add name="..."' if name is None
-                           else '<robot> has an empty name (name=""); give it one')
+                           else Taken('<robot> has an empty name (name=""); give it one'))
         return
     # the condition said as it is: urdfdom refuses a missing attribute, takes an empty one
     alone = ('<robot> has no name attribute: urdfdom refuses it if it is loaded alone (add '

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import Counter
 
-from urdftool.lint.catalogue import Conditional, Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, Taken, rule
 from urdftool.errors import available, listed
 from urdftool.lint.parts import part
 from urdftool.description.xacro_text import dropped_under
@@ -13,7 +13,7 @@ from urdftool.description.xacro_text import dropped_under
 def _duplicates(robot, tag: str):
     elements, named = robot.children(tag), robot.names()  # (each name read once per robot)
     names = [named[element] for element in elements]
-    counts = Counter(name for name in names if name)
+    counts = Counter(name for name in names if name is not None)  # (two name="" clash too)
     seen: set[str] = set()
     for element, name in zip(elements, names):
         if name is None:
@@ -78,15 +78,30 @@ def duplicate_joint(robot):
 def missing_name(robot):
     """A link or joint has no ``name`` attribute (or an empty one).
 
-    Bad: ``<link><visual>...</visual></link>``
+    No joint, controller or transmission can name it. What urdfdom (check_urdf,
+    robot_state_publisher) makes of it depends on the shape, and the commands that pose a robot
+    refuse it only where urdfdom does: it refuses a joint without the attribute and takes a
+    joint's ``name=""`` (two of them clash: "joint '' is not unique"); it reads a link without
+    the attribute as one named ``""``, which no joint can attach to (a joint's ``link=""`` is
+    "missing a parent and/or child link specification"): the only link of a robot, it is the
+    root, and urdfdom takes it; beside other links it is a second root, refused.
+
+    Bad: ``<link><visual>...</visual></link>``, ``<joint name="" ...>``
     Good: ``<link name="base_link">...</link>``
     """
     names = robot.names()
-    for tag in ("link", "joint"):
-        for element in robot.children(tag):
-            if not names[element]:
-                yield element, (f"<{tag}> has no name attribute" if element.get("name") is None
-                                else f"<{tag}> has an empty name (name=\"\")")
+    links = robot.children("link")
+    joints = robot.children("joint")
+    empty_joints = sum(1 for joint in joints if joint.get("name") == "")
+    for tag, elements in (("link", links), ("joint", joints)):
+        for element in elements:
+            if names[element]:
+                continue
+            missing = element.get("name") is None
+            message = f"<{tag}> has no name attribute" if missing else \
+                f"<{tag}> has an empty name (name=\"\")"
+            taken = len(links) == 1 if tag == "link" else not missing and empty_joints == 1
+            yield element, Taken(message) if taken else message
 
 
 @rule("U104", "joint-missing-endpoint", Severity.ERROR)
@@ -236,9 +251,41 @@ def kinematic_cycle(robot):
     its own ancestor through it) is one too: urdfdom's check_urdf never returns on it (its tree
     walk loops) and robot_state_publisher never starts.
 
+    A loop beside the tree (no link of it reached from a link without a parent joint, while
+    one such link exists) urdfdom takes: it builds the tree from that root and drops the
+    loop's links silently (check_urdf lists the tree without them); the commands that pose a
+    robot take it too, and pose the tree.
+
     Bad: ``a -> b`` and ``b -> a``
     Good: a tree: each link reached from the root by exactly one path
     """
+    for joint, message, cycle in _cycles(robot):
+        yield joint, Taken(message) if _beside_the_tree(robot, cycle) else message
+
+
+def _beside_the_tree(robot, cycle) -> bool:
+    """Whether no link of ``cycle`` is reached, down every joint, from a link without a parent
+    joint, and one such link (urdfdom's root) exists."""
+    parents = parent_map(robot)
+    roots = [link for link in robot.links if link not in parents]
+    if not roots:
+        return False
+    children: dict[str, list] = {}
+    for ends in robot.ends().values():
+        parent, child = ends["parent"][1], ends["child"][1]
+        if parent in robot.links and child in robot.links:
+            children.setdefault(parent, []).append(child)
+    reached, stack = set(roots), list(roots)
+    while stack:
+        for child in children.get(stack.pop(), ()):
+            if child not in reached:
+                reached.add(child)
+                stack.append(child)
+    return reached.isdisjoint(cycle)
+
+
+def _cycles(robot):
+    """(joint, message, links) for each loop of joints."""
     parents, ends = parent_map(robot), robot.ends()
     reported: set[str] = set()
     done: set[str] = set()  # links whose way up is walked: each link is walked once, O(n)
@@ -253,7 +300,7 @@ def kinematic_cycle(robot):
             reported.update(cycle)
             joint = parents[link][0]
             yield joint, "joints form a cycle through links " + " -> ".join(
-                [*reversed(cycle), cycle[-1]])
+                [*reversed(cycle), cycle[-1]]), cycle
         done.update(path)
     if any(len(joints) > 1 for joints in parents.values()):
         # the walk above goes up through each link's first parent joint only: a loop closed
@@ -262,7 +309,7 @@ def kinematic_cycle(robot):
 
 
 def _loops_through_second_parents(robot, reported: set[str]):
-    """(joint, message) for each loop of joints that a walk down every joint finds and that
+    """(joint, message, links) for each loop of joints that a walk down every joint finds and that
     shares no link with a loop in ``reported``: depth first, iteratively (10,000-link
     chains), each link entered once; a joint leading back to a link on the way down closes a
     loop, said at that joint as ``a -> b -> a`` (parent to child)."""
@@ -290,7 +337,7 @@ def _loops_through_second_parents(robot, reported: set[str]):
                 if reported.isdisjoint(loop):
                     reported.update(loop)
                     yield joint, "joints form a cycle through links " + " -> ".join(
-                        [*loop, child])
+                        [*loop, child]), loop
             elif child not in entered:
                 entered.add(child)
                 on_way[child] = len(way)
