@@ -176,7 +176,13 @@ def ros2_state_interfaces(robot) -> dict[str, set]:
 
 
 def control_plugin(robot):
-    """The element that makes a simulator or ros2_control read the transmissions, or None."""
+    """The element that makes a simulator or ros2_control read the transmissions, or None;
+    looked for once per robot (U507 and U603 ask: each looked in every ``<gazebo>`` block's
+    plugins, 1,434 lxml findall of the corpus's blocks)."""
+    return robot.memo(control_plugin, lambda: _control_plugin(robot))
+
+
+def _control_plugin(robot):
     blocks = robot.children("ros2_control")
     if blocks:
         return blocks[0]
