@@ -4,6 +4,7 @@ from __future__ import annotations
 
 
 from urdftool.description.urdf import MOVING
+from urdftool.description.xml import children_named
 from urdftool.records import NEW, Record
 
 # ROS 1 hardware interfaces (without the hardware_interface/ prefix) -> command interface, or
@@ -86,13 +87,13 @@ def transmission_joints(robot, transmission) -> tuple[TransmissionJoint, ...]:
 
 
 def _transmission_joints(transmission) -> list[TransmissionJoint]:
-    shared = transmission.findall("hardwareInterface")
+    shared = children_named(transmission, "hardwareInterface")
     actuator = next((child for child in transmission if child.tag == "actuator"), None)
-    held = actuator.findall("hardwareInterface") if actuator is not None else []
+    held = children_named(actuator, "hardwareInterface") if actuator is not None else []
     found = []
     for joint in transmission:
         if _is_joint(joint):
-            own = joint.findall("hardwareInterface") or shared
+            own = children_named(joint, "hardwareInterface") or shared
             found.append(TransmissionJoint(joint, joint.get("name"), own or held,
                                            not own and bool(held)))
     return found
