@@ -4,7 +4,7 @@ from __future__ import annotations
 
 
 from urdftool.description.urdf import MOVING
-from urdftool.description.xml import children_named
+from urdftool.description.xml import children_named, first_child
 from urdftool.records import NEW, Record
 
 # ROS 1 hardware interfaces (without the hardware_interface/ prefix) -> command interface, or
@@ -188,7 +188,7 @@ def _control_plugin(robot):
     if blocks:
         return blocks[0]
     for gazebo in robot.children("gazebo"):
-        for plugin in gazebo.findall("plugin"):
+        for plugin in children_named(gazebo, "plugin"):
             text = f"{plugin.get('filename', '')} {plugin.get('name', '')}"
             if any(name in text for name in CONTROL_PLUGINS):
                 return plugin
@@ -251,4 +251,4 @@ def published_by_gazebo(robot) -> set:
 def moving_joints(robot) -> dict:
     """Non-fixed joints that need a driver: revolute, continuous and prismatic, not mimic."""
     return {name: joint for name, joint in robot.joints.items()
-            if joint.get("type") in MOVING and joint.find("mimic") is None}
+            if joint.get("type") in MOVING and first_child(joint, "mimic") is None}
