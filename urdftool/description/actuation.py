@@ -203,7 +203,7 @@ def gazebo_plugins(robot) -> tuple:
     """Every ``<plugin>`` inside a ``<gazebo>`` block, in document order; once per robot (a
     dozen rules and loaders ask, and each search walked every block to its leaves)."""
     return robot.memo(gazebo_plugins, lambda: tuple(
-        plugin for gazebo in robot.children("gazebo") for plugin in gazebo.iter("plugin")))
+        element for _, element in gazebo_elements(robot) if element.tag == "plugin"))
 
 
 def gazebo_sensors(robot) -> tuple:
@@ -211,7 +211,20 @@ def gazebo_sensors(robot) -> tuple:
     once per robot (the camera conventions walked the blocks to their leaves three times: 1,395
     walks of the corpus's 806 blocks)."""
     return robot.memo(gazebo_sensors, lambda: tuple(
-        (gazebo, sensor) for gazebo in robot.children("gazebo") for sensor in gazebo.iter("sensor")))
+        (gazebo, element) for gazebo, element in gazebo_elements(robot) if element.tag == "sensor"))
+
+
+GAZEBO_WALKED = ("plugin", "sensor", "frame_name", "frameName", "bodyName", "body_name")
+
+
+def gazebo_elements(robot) -> tuple:
+    """(``<gazebo>`` block, element) for every element of :data:`GAZEBO_WALKED` inside a block
+    (its plugins, its sensors, the frames they name), in document order; one walk of each block
+    once per robot (the plugins, the sensors and U615's frames walked the corpus's 806 blocks
+    to their leaves once each)."""
+    return robot.memo(gazebo_elements, lambda: tuple(
+        (gazebo, element) for gazebo in robot.children("gazebo")
+        for element in gazebo.iter(*GAZEBO_WALKED)))
 
 
 def diff_drive_plugins(robot):

@@ -296,4 +296,4 @@ def test_the_camera_conventions_walk_the_gazebo_blocks_for_sensors_once(tmp_path
                         children(robot, tag))
     found = _found(tmp_path, _camera(optical="0 0 0", frame="camera_link"), ("U417",))
     assert len(found) == 2
-    assert asked.count("gazebo") == 2, asked  # the sensors' walk, and gazebo_plugins' (loader)
+    assert asked.count("gazebo") == 1, asked  # one walk for the sensors and the plugins
