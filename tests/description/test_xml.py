@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 from lxml import etree
 
-from urdftool.description.xml import child_list, first_child
+from urdftool.description.xml import child_list, children_named, first_child
 
 
 def test_child_is_find_for_a_plain_tag():
@@ -17,6 +17,16 @@ def test_child_is_find_for_a_plain_tag():
     assert first_child(root.find("geometry"), "origin").get("n") == "deep"
     assert first_child(root.find("origin"), "origin") is None  # a leaf has no children
     assert first_child(etree.Comment("c"), "origin") is None
+
+
+def test_children_named_is_findall_for_a_plain_tag():
+    root = etree.fromstring(b'<transmission><!-- hardwareInterface --><hardwareInterface n="1"/>'
+                            b'<joint><hardwareInterface n="deep"/></joint><?hardwareInterface?>'
+                            b'<hardwareInterface n="2"/></transmission>')
+    for element in (root, root.find("joint"), root.find("hardwareInterface")):
+        for tag in ("hardwareInterface", "joint", "actuator"):
+            assert children_named(element, tag) == element.findall(tag)
+    assert [e.get("n") for e in children_named(root, "hardwareInterface")] == ["1", "2"]
 
 
 def test_child_list_is_what_iterating_gives():

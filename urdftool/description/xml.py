@@ -483,6 +483,13 @@ def child_list(element) -> list:
     return element[:]
 
 
+def children_named(element, tag: str) -> list:
+    """``element.findall(tag)`` for a plain tag (the direct children so named, in order), from
+    :func:`child_list`: lxml's ``findall`` parses its path on each call, which costs more than
+    the few children of a transmission or a material take to walk."""
+    return [child for child in child_list(element) if child.tag == tag]
+
+
 def first_child(element, tag: str):
     """``element.find(tag)`` for a plain tag (the first direct child so named, or None), a
     tenth of its cost: lxml's ``find`` parses its path on each call, and the rules ask for

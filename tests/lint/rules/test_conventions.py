@@ -283,3 +283,17 @@ def test_a_wheel_is_the_body_of_links_fixed_to_its_rolling_link(tmp_path):
     lifted = body.replace('<origin xyz="0 -0.12 -0.1"/>', '<origin xyz="0 -0.12 -0.07"/>')
     [(code, message)] = _found(tmp_path, lifted, codes=("U419",))
     assert "'right_wheel_rotor' is 30 mm above the lowest wheel" in message
+
+
+def test_the_camera_conventions_walk_the_gazebo_blocks_for_sensors_once(tmp_path, monkeypatch):
+    """U417's three looks for camera sensors (the cameras, their frames, whether a link is a
+    camera body) share one walk of the <gazebo> blocks per robot: the same findings."""
+    from urdftool.description.robot import Robot
+
+    asked = []
+    children = Robot.children
+    monkeypatch.setattr(Robot, "children", lambda robot, tag: asked.append(tag) or
+                        children(robot, tag))
+    found = _found(tmp_path, _camera(optical="0 0 0", frame="camera_link"), ("U417",))
+    assert len(found) == 2
+    assert asked.count("gazebo") == 1, asked  # one walk for the sensors and the plugins

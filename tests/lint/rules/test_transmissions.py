@@ -473,3 +473,23 @@ def generate_launch_description():
     assert [f.severity for f in findings] == [Severity.WARNING]
     assert "builds it with use_gazebo:=(known only at launch), add_world:=" in \
         findings[0].message, findings[0].message
+
+
+def test_the_control_plugin_is_looked_for_once_per_robot(tmp_path, monkeypatch):
+    """U507 and U603 ask for the plugin that reads the transmissions; each looked in every
+    <gazebo> block's plugins (lxml's findall of each): looked for once, the same element."""
+    from urdftool.description import actuation
+    from urdftool.description.load import load
+
+    looked = []
+    looking = actuation._control_plugin
+    monkeypatch.setattr(actuation, "_control_plugin", lambda robot: looked.append(1) or
+                        looking(robot))
+    plugin = '<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>'
+    (tmp_path / "robot.urdf").write_text(HEAD_ROBOT.format(body="<gazebo/>" + plugin + tx()))
+    robot = load(str(tmp_path / "robot.urdf"))
+    first = actuation.control_plugin(robot)
+    assert first.get("filename") == "libgazebo_ros_control.so"
+    assert actuation.control_plugin(robot) is first
+    assert len(looked) == 1
+    assert codes(tmp_path, plugin) == ["U507"]

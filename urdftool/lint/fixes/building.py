@@ -223,10 +223,11 @@ def inertial_edits(robot, link, body) -> list[Edit] | Unfixable:
     if inertial is None:
         return _new_inertial(robot, link, mass, com, terms)
     edits = []
-    if inertial.find("mass") is not None and inertial.find("mass").get("value") is not None:
-        declared = float(inertial.find("mass").get("value", "nan") or "nan")
+    mass_element, inertia = inertial.find("mass"), inertial.find("inertia")  # (read once)
+    if mass_element is not None and mass_element.get("value") is not None:
+        declared = float(mass_element.get("value", "nan") or "nan")
         if not abs(declared - float(body.mass)) <= 1e-9 * max(abs(declared), 1.0):
-            edits.append(set_attribute(robot, inertial.find("mass"), "value", mass))
+            edits.append(set_attribute(robot, mass_element, "value", mass))
     origin = inertial.find("origin")
     if origin is not None:
         edits.append(set_attribute(robot, origin, "xyz", com))
@@ -237,10 +238,10 @@ def inertial_edits(robot, link, body) -> list[Edit] | Unfixable:
         if first is None:
             return Unfixable("its <inertial> is empty")
         edits.append(insert_before(robot, first, f'<origin xyz="{com}" rpy="0 0 0"/>'))
-    if inertial.find("inertia") is None:
+    if inertia is None:
         return Unfixable("its <inertial> has no <inertia>")
     for name, value in terms.items():
-        edits.append(set_attribute(robot, inertial.find("inertia"), name, value))
+        edits.append(set_attribute(robot, inertia, name, value))
     unfixable = next((e for e in edits if isinstance(e, Unfixable)), None)
     return unfixable or [edit for group in edits for edit in group]
 

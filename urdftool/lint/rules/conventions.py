@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 import re
 
+from urdftool.description.actuation import gazebo_sensors
 from urdftool.description.values import parse_numbers
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.numbers import MILLIMETRE, number, numbers
@@ -49,35 +50,34 @@ def _camera_frames(robot):
     """(element naming the frame, frame name, sensor frame (position, rotation) in the root
     frame, sensor label) for each camera sensor's plugin or sensor that names an image frame."""
     frames = link_frames(robot)
-    for gazebo in robot.children("gazebo"):
+    for gazebo, sensor in gazebo_sensors(robot):
         reference = gazebo.get("reference")
         if reference not in frames:
             continue
-        for sensor in gazebo.iter("sensor"):
-            if (sensor.get("type") or "").lower() not in CAMERA_SENSORS:
-                continue
-            pose = sensor.find("pose")
-            values, problem = parse_numbers(pose.text if pose is not None else "0 0 0 0 0 0", 6)
+        if (sensor.get("type") or "").lower() not in CAMERA_SENSORS:
+            continue
+        pose = sensor.find("pose")
+        values, problem = parse_numbers(pose.text if pose is not None else "0 0 0 0 0 0", 6)
+        if problem or not values:
+            continue
+        position, rotation = frames[reference]
+        placed = (mat3.add(position, mat3.apply(rotation, values[:3])),
+                  mat3.multiply(rotation, mat3.rpy_matrix(values[3:])))
+        lens = sensor.findall("camera")  # its own <pose>, which Gazebo puts after the sensor's
+        own = lens[0].find("pose") if len(lens) == 1 else None
+        if own is not None:
+            values, problem = parse_numbers(own.text, 6)
             if problem or not values:
                 continue
-            position, rotation = frames[reference]
+            position, rotation = placed
             placed = (mat3.add(position, mat3.apply(rotation, values[:3])),
                       mat3.multiply(rotation, mat3.rpy_matrix(values[3:])))
-            lens = sensor.findall("camera")  # its own <pose>, which Gazebo puts after the sensor's
-            own = lens[0].find("pose") if len(lens) == 1 else None
-            if own is not None:
-                values, problem = parse_numbers(own.text, 6)
-                if problem or not values:
-                    continue
-                position, rotation = placed
-                placed = (mat3.add(position, mat3.apply(rotation, values[:3])),
-                          mat3.multiply(rotation, mat3.rpy_matrix(values[3:])))
-            for tag in CAMERA_FRAME_TAGS:
-                for element in sensor.iter(tag):
-                    name = (element.text or "").strip().lstrip("/")
-                    if name:
-                        yield element, name, placed, f"{sensor.get('type')} sensor " \
-                                                     f"'{sensor.get('name')}' on '{reference}'"
+        for tag in CAMERA_FRAME_TAGS:
+            for element in sensor.iter(tag):
+                name = (element.text or "").strip().lstrip("/")
+                if name:
+                    yield element, name, placed, f"{sensor.get('type')} sensor " \
+                                                 f"'{sensor.get('name')}' on '{reference}'"
 
 
 _CAMERA_BODY = re.compile(r"cam|rgb|depth|stereo|kinect|xtion|realsense|zed|oak|lens|infra",
@@ -93,8 +93,7 @@ def _camera_body(robot, body: str, optical: str) -> bool:
     say nothing of where the camera looks."""
     if _CAMERA_BODY.search(body) or any(
             gazebo.get("reference") == body and (sensor.get("type") or "").lower()
-            in CAMERA_SENSORS for gazebo in robot.children("gazebo")
-            for sensor in gazebo.iter("sensor")):
+            in CAMERA_SENSORS for gazebo, sensor in gazebo_sensors(robot)):
         return True
     words = set(_NAME_WORDS.findall(optical.lower())) - {"optical", "frame", "link"}
     return bool(words & set(_NAME_WORDS.findall(body.lower())))
@@ -144,7 +143,7 @@ def optical_frame_rotation(robot):
     ``<origin rpy="${-pi/2} 0 ${-pi/2}"/>``, named by the plugin
     """
     optical = [name for name in robot.links if _OPTICAL_NAME.search(name)]
-    cameras = [sensor for gazebo in robot.children("gazebo") for sensor in gazebo.iter("sensor")
+    cameras = [sensor for _, sensor in gazebo_sensors(robot)
                if (sensor.get("type") or "").lower() in CAMERA_SENSORS]
     if not optical and not cameras:
         return

@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 
 
-from urdftool.description.actuation import WHEEL_JOINT_TAGS, diff_drive_plugins, gazebo_plugins
+from urdftool.description.actuation import (WHEEL_JOINT_TAGS, diff_drive_plugins, gazebo_elements,
+                                           gazebo_plugins)
 from urdftool.description.controllers import controllers, names_at
 from urdftool.description.urdf import ROUND
 from urdftool.description.values import origin, parse_numbers
@@ -343,59 +344,60 @@ def sensor_unknown_link(robot):
     Bad: ``<gazebo> <sensor type="camera" ...>`` (no reference)
     Good: ``<gazebo reference="camera_link"> <sensor type="camera" ...>``
     """
-    for gazebo in robot.children("gazebo"):
+    for gazebo, element in gazebo_elements(robot):
+        # the sensors and frames of the one walk of each block (it walked it once for the
+        # sensors, then once a tag: 5 walks of each of the corpus's 806 blocks); the engine
+        # sorts the findings, so their order here is free
+        tag = element.tag
+        if tag != "sensor" and tag not in FRAME_TAGS:
+            continue  # a plugin (the walk's tags hold FRAME_TAGS: tests/lint/rules/test_gazebo)
         reference = gazebo.get("reference")
-        # one walk of the block for its sensors and frames (it walked it once for the sensors,
-        # then once a tag: 5 walks of each of the corpus's 806 blocks); the engine sorts the
-        # findings, so their order here is free
-        for element in gazebo.iter("sensor", *FRAME_TAGS):
-            tag = element.tag
-            if tag == "sensor":
-                if reference is None and not _inside(element, gazebo, "link"):
-                    yield element, (f"sensor '{element.get('name')}' is in a <gazebo> without a "
-                                    "reference; put it in <gazebo reference=\"LINK\">")
-                elif (reference not in robot.links and reference in robot.joints
-                      and element.get("type") != "force_torque"):
-                    yield element, (f"sensor '{element.get('name')}' is on joint '{reference}', "
-                                    "not a link; " + available('links', reference, robot.links))
-                continue
-            if tag in SENSOR_FRAME_TAGS and not _inside(element, gazebo, "sensor"):
-                continue  # a sensor plugin's frame: read only in a <sensor>
-            if _unread(robot, element):
-                continue  # no plugin of the robot's ROS version stamps data with it (U640)
-            name = _frame((element.text or "").strip(), tag in ROS1_FRAME_TAGS)
-            namespace, _, link = name.rpartition("/")
-            if namespace.strip("/") and link in robot.links:
-                if name.startswith("/"):  # ROS 2 (ROS 1's tags are stripped above)
-                    yield element, (
-                        f"<{tag}> '{name}' starts with '/': ROS 2's tf2 refuses frame ids "
-                        f"that do (\"frame_id should not start with a '/'\"); write "
-                        f"'{name.lstrip('/')}'")
-                continue  # link '{link}' under a TF prefix the launch gives (frame_prefix)
-            prefixed = [link for link in robot.links if link.endswith("/" + name)] \
-                if name and tag in ROS1_FRAME_TAGS and name not in robot.links else []
-            if len(prefixed) == 1:  # ROS 1's plugins prefix it with their tf_prefix
-                prefix = prefixed[0][:-len(name) - 1]
-                if _robot_namespace(element) == prefix.strip("/"):
-                    continue  # the tf_prefix it falls back to, unless a launch sets one
-                yield element, Conditional(
-                    f"unless the plugin's tf_prefix parameter is '{prefix}' (ROS 1's "
-                    f"sensor plugins prefix <{tag}> with it, or with their "
-                    f"<robotNamespace> when none is set): <{tag}> '{name}' is not a link, "
-                    f"'{prefixed[0]}' is, so TF cannot place the data stamped with it")
-            elif name and name in static_frames(robot):
-                published = static_frames(robot)[name]
-                when = f" {published.condition}" if published.condition else ""
-                yield element, Conditional(
-                    f"<{tag}> '{name}' is not a link; {published.where} publishes it with a "
-                    f"static_transform_publisher from '{published.parent}'{when}, so TF "
-                    "places the data stamped with it only while that launch file runs",
-                    Severity.INFO)
-            elif name and name not in robot.links and name not in GAZEBO_FRAMES:
-                own = (f"use '{reference}', the link it sits on, or add a link '{name}'"
-                       if reference in robot.links else available("links", name, robot.links))
-                yield element, (f"<{tag}> '{name}' is not a link, so TF cannot place the data "
-                                "stamped with it; " + own)
+        if tag == "sensor":
+            if reference is None and not _inside(element, gazebo, "link"):
+                yield element, (f"sensor '{element.get('name')}' is in a <gazebo> without a "
+                                "reference; put it in <gazebo reference=\"LINK\">")
+            elif (reference not in robot.links and reference in robot.joints
+                  and element.get("type") != "force_torque"):
+                yield element, (f"sensor '{element.get('name')}' is on joint '{reference}', "
+                                "not a link; " + available('links', reference, robot.links))
+            continue
+        if tag in SENSOR_FRAME_TAGS and not _inside(element, gazebo, "sensor"):
+            continue  # a sensor plugin's frame: read only in a <sensor>
+        if _unread(robot, element):
+            continue  # no plugin of the robot's ROS version stamps data with it (U640)
+        name = _frame((element.text or "").strip(), tag in ROS1_FRAME_TAGS)
+        namespace, _, link = name.rpartition("/")
+        if namespace.strip("/") and link in robot.links:
+            if name.startswith("/"):  # ROS 2 (ROS 1's tags are stripped above)
+                yield element, (
+                    f"<{tag}> '{name}' starts with '/': ROS 2's tf2 refuses frame ids "
+                    f"that do (\"frame_id should not start with a '/'\"); write "
+                    f"'{name.lstrip('/')}'")
+            continue  # link '{link}' under a TF prefix the launch gives (frame_prefix)
+        prefixed = [link for link in robot.links if link.endswith("/" + name)] \
+            if name and tag in ROS1_FRAME_TAGS and name not in robot.links else []
+        if len(prefixed) == 1:  # ROS 1's plugins prefix it with their tf_prefix
+            prefix = prefixed[0][:-len(name) - 1]
+            if _robot_namespace(element) == prefix.strip("/"):
+                continue  # the tf_prefix it falls back to, unless a launch sets one
+            yield element, Conditional(
+                f"unless the plugin's tf_prefix parameter is '{prefix}' (ROS 1's "
+                f"sensor plugins prefix <{tag}> with it, or with their "
+                f"<robotNamespace> when none is set): <{tag}> '{name}' is not a link, "
+                f"'{prefixed[0]}' is, so TF cannot place the data stamped with it")
+        elif name and name in static_frames(robot):
+            published = static_frames(robot)[name]
+            when = f" {published.condition}" if published.condition else ""
+            yield element, Conditional(
+                f"<{tag}> '{name}' is not a link; {published.where} publishes it with a "
+                f"static_transform_publisher from '{published.parent}'{when}, so TF "
+                "places the data stamped with it only while that launch file runs",
+                Severity.INFO)
+        elif name and name not in robot.links and name not in GAZEBO_FRAMES:
+            own = (f"use '{reference}', the link it sits on, or add a link '{name}'"
+                   if reference in robot.links else available("links", name, robot.links))
+            yield element, (f"<{tag}> '{name}' is not a link, so TF cannot place the data "
+                            "stamped with it; " + own)
 
 
 def _unread(robot, element) -> bool:

@@ -10,7 +10,7 @@ import math
 from urdftool.lint.catalogue import Conditional, Severity, rule, weighed
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
-from urdftool.description.xml import child_list, first_child
+from urdftool.description.xml import child_list, children_named, first_child
 from urdftool.description.xacro_text import dropped_under
 from urdftool.description.values import finite, number_tuple, origin_pose, parse_numbers
 from urdftool.description.values import number as attribute_number
@@ -287,7 +287,7 @@ def malformed_material(robot):
         parent = material.getparent()
         if parent.tag == "visual" and material.get("name") is None:
             yield material, f"link '{_link_name(parent)}': visual <material> has no name attribute"
-        for color in material.findall("color"):
+        for color in children_named(material, "color"):
             problem = _rgba_problem(color)
             if problem:
                 yield color, f"material '{material.get('name')}': {problem}"

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.values import number as attribute_number
+from urdftool.description.xml import first_child
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.numbers import decimal_slip, number, numbers
 from urdftool.physics import mat3
@@ -393,7 +394,7 @@ def _rigid_end(robot, name: str) -> bool:
 
 
 def _limits(joint) -> tuple[float, float] | None:
-    limit = joint.find("limit")
+    limit = first_child(joint, "limit")  # (lxml's find parses its path on every call)
     if limit is None:
         return None
     lower, upper = attribute_number(limit, "lower", 0.0), attribute_number(limit, "upper", 0.0)

@@ -294,8 +294,9 @@ def unactuated_joint(robot):
     if publishing and not silent:
         return  # every launch file starting the robot's controllers starts joint_state_publisher
     loader = "<ros2_control>" if plugin.tag == "ros2_control" else f"plugin '{plugin.get('filename')}'"
-    misspelt = _misspelt_entries(robot, [name for name in moving_joints(robot) if name not in actuated])
-    for name, joint in moving_joints(robot).items():
+    moving = moving_joints(robot)
+    misspelt = _misspelt_entries(robot, [name for name in moving if name not in actuated])
+    for name, joint in moving.items():
         if name not in actuated:
             message = (f"{joint.get('type')} joint '{name}' has no transmission or ros2_control joint "
                        f"although the robot loads {loader}; it will not be in /joint_states")
