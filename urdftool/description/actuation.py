@@ -178,8 +178,8 @@ def ros2_state_interfaces(robot) -> dict[str, set]:
 
 def control_plugin(robot):
     """The element that makes a simulator or ros2_control read the transmissions, or None;
-    looked for once per robot (U507 and U603 ask: each looked in every ``<gazebo>`` block's
-    plugins, 1,434 lxml findall of the corpus's blocks)."""
+    looked for once per robot (two rules ask, the transmissions' and the controllers': each
+    looked in every ``<gazebo>`` block's plugins, 1,434 lxml findall of the corpus's blocks)."""
     return robot.memo(control_plugin, lambda: _control_plugin(robot))
 
 
@@ -220,8 +220,8 @@ GAZEBO_WALKED = ("plugin", "sensor", "frame_name", "frameName", "bodyName", "bod
 def gazebo_elements(robot) -> tuple:
     """(``<gazebo>`` block, element) for every element of :data:`GAZEBO_WALKED` inside a block
     (its plugins, its sensors, the frames they name), in document order; one walk of each block
-    once per robot (the plugins, the sensors and U615's frames walked the corpus's 806 blocks
-    to their leaves once each)."""
+    once per robot (the plugins, the sensors and the sensor-frame rule's frames walked the
+    corpus's 806 blocks to their leaves once each)."""
     return robot.memo(gazebo_elements, lambda: tuple(
         (gazebo, element) for gazebo in robot.children("gazebo")
         for element in gazebo.iter(*GAZEBO_WALKED)))

@@ -92,12 +92,12 @@ def missing_name(robot):
     names = robot.names()
     links = robot.children("link")
     joints = robot.children("joint")
-    empty_joints = sum(1 for joint in joints if joint.get("name") == "")
+    empty_joints = sum(1 for joint in joints if names[joint] == "")  # (names read once)
     for tag, elements in (("link", links), ("joint", joints)):
         for element in elements:
             if names[element]:
                 continue
-            missing = element.get("name") is None
+            missing = names[element] is None
             message = f"<{tag}> has no name attribute" if missing else \
                 f"<{tag}> has an empty name (name=\"\")"
             taken = len(links) == 1 if tag == "link" else not missing and empty_joints == 1
