@@ -266,22 +266,36 @@ def kinematic_cycle(robot):
 def _beside_the_tree(robot, cycle) -> bool:
     """Whether no link of ``cycle`` is reached, down every joint, from a link without a parent
     joint, and one such link (urdfdom's root) exists."""
-    parents = parent_map(robot)
+    reached = robot.memo(_beside_the_tree, lambda: _reached_from_roots(robot))
+    return bool(reached) and reached.isdisjoint(cycle)
+
+
+def _reached_from_roots(robot) -> set[str]:
+    """The links reached down every joint from the links without a parent joint (empty when
+    there is none): once per robot, whatever the number of loops asking."""
+    parents, children = parent_map(robot), _child_map(robot)
     roots = [link for link in robot.links if link not in parents]
-    if not roots:
-        return False
-    children: dict[str, list] = {}
-    for ends in robot.ends().values():
-        parent, child = ends["parent"][1], ends["child"][1]
-        if parent in robot.links and child in robot.links:
-            children.setdefault(parent, []).append(child)
     reached, stack = set(roots), list(roots)
     while stack:
-        for child in children.get(stack.pop(), ()):
+        for _, child in children.get(stack.pop(), ()):
             if child not in reached:
                 reached.add(child)
                 stack.append(child)
-    return reached.isdisjoint(cycle)
+    return reached
+
+
+def _child_map(robot) -> dict[str, list]:
+    """Parent link name -> (joint, child link name) of each joint between links that exist,
+    in document order; built once per robot (the two walks down the joints ask)."""
+    def build():
+        children: dict[str, list] = {}
+        for joint, ends in robot.ends().items():
+            parent, child = ends["parent"][1], ends["child"][1]
+            if parent in robot.links and child in robot.links:
+                children.setdefault(parent, []).append((joint, child))
+        return children
+
+    return robot.memo(_child_map, build)
 
 
 def _cycles(robot):
@@ -313,11 +327,7 @@ def _loops_through_second_parents(robot, reported: set[str]):
     shares no link with a loop in ``reported``: depth first, iteratively (10,000-link
     chains), each link entered once; a joint leading back to a link on the way down closes a
     loop, said at that joint as ``a -> b -> a`` (parent to child)."""
-    children: dict[str, list] = {}
-    for joint, ends in robot.ends().items():
-        parent, child = ends["parent"][1], ends["child"][1]
-        if parent in robot.links and child in robot.links:
-            children.setdefault(parent, []).append((joint, child))
+    children = _child_map(robot)
     entered: set[str] = set()
     for start in robot.links:
         if start in entered:
