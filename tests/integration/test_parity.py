@@ -184,9 +184,13 @@ SHAPES = {
                                        "''); no joint can attach to it", (POSES, POSES)),
     "link without a name, the only link": ("<link/>", "accepts", {"U103"},
                                            "stricter: urdfdom logs 'No name given for the "
-                                           "link.' and takes it as a link named ''; urdftool's "
-                                           "model names every link, so its commands say so "
-                                           "and stop", (REFUSES, REFUSES)),
+                                           "link.' and takes it as a link named '' (read no "
+                                           "further: what it holds is dropped); no joint can "
+                                           "attach to it", (POSES, POSES)),
+    "link without a name holding an inertial, the only link": (
+        '<link><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" '
+        'iyz="0"/></inertial></link>', "accepts", {"U103"}, "stricter (as above)",
+        (POSES, POSES)),
     "mimic joints that mimic each other": (_link("r", "a", "b") + _joint("ja", "r", "a", "jb")
                                            + _joint("jb", "r", "b", "ja"), "accepts",
                                            {"U211"}, "stricter, and not a URDFDOM code: "
