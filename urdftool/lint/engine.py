@@ -41,7 +41,8 @@ URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
                              "U110", "U201", "U202", "U203", "U207", "U208", "U213",
                              "U023"})
 # ... and what the commands that pose a robot (fk, render...) refuse besides: a link with two
-# parent joints (U107), which urdfdom and Pinocchio hang under the joint whose name sorts last,
+# parent joints (U107), which urdfdom hangs under the joint whose name sorts last, Pinocchio
+# too or refuses the robot ("Model does not have any body named a"), by the joints' names, and
 # urdftool's kinematics and yourdfpy under neither (they stopped at it in their own words)
 POSING_REFUSES = URDFDOM_REFUSES | {"U107"}
 # ... but not a finding its rule says urdfdom takes (Finding.urdfdom_takes, from a
