@@ -309,6 +309,36 @@ def test_cli_dh_text_and_located_error(run_cli, tmp_path):
     assert result.stderr.startswith(f"urdftool: error: {path}:2: joint 'fly' is floating")
 
 
+# two joints whose axes are antiparallel to 1e-9 rad, a joint's offset 0.49 m: the common
+# normal of axes that are neither parallel to _EPS nor apart enough to place (found by fuzzing)
+NEARLY_PARALLEL = (
+    '<robot name="r"><link name="l0"/><link name="l1"/>'
+    '<joint name="j0" type="revolute"><parent link="l0"/><child link="l1"/>'
+    '<origin xyz="3.7226086368378395e-07 2.442014750133396e-09 -1.1780589691969552"'
+    ' rpy="7.471601859788264e-10 3.1415926546649646 0"/>'
+    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+    '<link name="l2"/><joint name="j1" type="prismatic"><parent link="l1"/>'
+    '<child link="l2"/>'
+    '<origin xyz="0.49395781119002047 2.592438446614699e-07 0"'
+    ' rpy="-3.0788012408650447e-09 -1.546258446280463e-10 3.1415926587183836"/>'
+    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+    '</robot>')
+
+
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+def test_cli_dh_an_axis_it_cannot_place_is_the_chains_not_the_robots(run_cli, tmp_path,
+                                                                   convention):
+    """The chain the user chose goes through a joint the construction cannot place: a usage
+    error (exit 2, at the joint), as a joint without a D-H form; it exited 1 as if the robot
+    were at fault, where another --base or --tip answers it."""
+    path = tmp_path / "p.urdf"
+    path.write_text(NEARLY_PARALLEL)
+    result = run_cli("dh", path, "--base", "l0", "--tip", "l2", "--convention", convention)
+    assert result.exit_code == 2, result.output
+    assert "its axis cannot be placed in D-H form" in result.stderr
+    assert "choose a --base or --tip that leaves it out" in result.stderr
+
+
 def test_cli_dh_base_defaults_to_the_root_and_needs_one(run_cli, tmp_path):
     """Like ik, fk and workspace, --base defaults to the root link; without a single root the
     table has no start, said at the robot (exit 1), not as a traceback."""
