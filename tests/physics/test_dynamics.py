@@ -774,3 +774,27 @@ def test_rows_over_the_limit_are_refused_before_the_model_is_built(tmp_path, mon
         build(robot, max_rows=11)
     monkeypatch.undo()
     assert len(build(robot, max_rows=12).joints) == 12
+
+
+def test_the_q_help_names_the_coordinates_dynamics_takes(tmp_path, run_cli):
+    """``dynamics --help`` said "Joint position (repeatable)" alone: how a planar joint's and a
+    floating joint's values are given was in the docs only. Each name the help gives is taken
+    (and moves the robot: P changes)."""
+    from urdftool.kinematics.configuration import FLOATING_COORDINATES, PLANAR_COORDINATES
+
+    said = " ".join(run_cli("dynamics", "--help").stdout.split())
+    assert "A planar joint is three: JOINT.x, JOINT.y [m]" in said and "JOINT.yaw" in said
+    assert "floating joint (and --floating's root_joint) six: JOINT.x, .y, .z [m] and " \
+        ".roll, .pitch, .yaw [rad]" in said
+    assert PLANAR_COORDINATES == ("x", "y", "yaw")
+    assert FLOATING_COORDINATES == ("x", "y", "z", "roll", "pitch", "yaw")
+    path = tmp_path / "plane.urdf"
+    path.write_text(PLANAR.format(base=PLANE))
+    for coordinate in PLANAR_COORDINATES:
+        result = run_cli("dynamics", path, "--q", f"slide.{coordinate}=0.5", "-f", "json")
+        assert result.exit_code == 0, result.output
+        assert json.loads(result.stdout)["q"] == {f"slide.{coordinate}": 0.5}
+    for coordinate in FLOATING_COORDINATES:
+        result = run_cli("dynamics", path, "--floating", "--q", f"root_joint.{coordinate}=0.5",
+                         "-f", "json")
+        assert result.exit_code == 0, result.output
