@@ -525,3 +525,36 @@ def test_a_table_length_past_the_farthest_coordinate_is_refused(tmp_path, humano
             as refused:
         dh.load_table(str(path))
     assert refused.value.where.endswith(where)
+
+
+@pytest.mark.parametrize("x", ["0", "1e8", "4e10"])
+def test_the_text_table_read_back_reproduces_the_chain_to_its_decimals(tmp_path, run_cli, x):
+    """The text table printed 6 decimals of every number: 1e8 m from its base link, a theta
+    off by 5e-7 rad moved the tip by metres. Its numbers read back (theta, d, a, alpha, the
+    base's and tool's xyz and rpy) reproduce the extracted table to 1e-6 m and rad wherever
+    the chain is (or what a float resolves there, past 1e9 m): angles get a decimal more for each power of ten the chain reaches, lengths
+    keep 6, never past the 17 digits a float holds."""
+    from urdftool.kinematics.transforms import from_xyz_rpy
+
+    path = tmp_path / "far.urdf"
+    path.write_text(FAR_CHAIN.format(x=x))
+    result = run_cli("dh", path, "--base", "w", "--tip", "c")
+    assert result.exit_code == 0, result.output
+    exact = dh.extract(load(str(path)), "w", "c")
+    rows, frames = [], {}
+    for line in result.stdout.splitlines():
+        words = line.split()
+        if words and words[0] in {row.joint for row in exact.joints}:
+            rows.append(dh.DHJoint(words[0], words[1], *map(float, words[2:6])))
+        elif words and words[0] in ("base:", "tool:"):
+            frames[words[0]] = from_xyz_rpy([float(w) for w in words[2:5]],
+                                            [float(w) for w in words[6:9]])
+        assert all(len(word.replace("-", "").replace(".", "")) <= 17 for word in words
+                   if word.lstrip("-")[:1].isdigit()), line
+    printed = dh.DHTable(exact.convention, frames["base:"], frames["tool:"], rows, "w", "c", 0.0)
+    q = np.random.default_rng(0).uniform(-1, 1, (64, len(rows)))
+    ours, theirs = dh.table_fk(printed, q), dh.table_fk(exact, q)
+    # (4e10 m out a float resolves 7.6e-6 m: there the table is held to what dh holds it to)
+    tolerance = max(1e-6, dh._tolerance(exact.base))
+    assert np.abs(ours[:, :3, 3] - theirs[:, :3, 3]).max() <= tolerance
+    assert np.abs(ours[:, :3, :3] - theirs[:, :3, :3]).max() <= 1e-6
