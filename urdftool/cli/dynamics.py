@@ -17,7 +17,10 @@ def register(app: typer.Typer) -> None:
     app.command("dynamics", help="Mass, centre of mass, energies K, P, L, M(q), G(q), C(q,v), "
                                  "torques with damping and friction, with a fixed or a "
                                  "--floating base, standing on --support, and gravity margins "
-                                 "against effort limits.")(budgeted(dynamics))
+                                 "against effort limits. The total mass and centre of mass "
+                                 "count every link, the root link and the links fixed to it "
+                                 "too (Pinocchio's computeTotalMass and centerOfMass leave "
+                                 "those out: 'fixed_mass' in JSON).")(budgeted(dynamics))
 
 
 def dynamics(
