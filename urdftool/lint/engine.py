@@ -308,7 +308,20 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
         findings = check_robot(robot, options.selection)
     if built and options.selection.allows(built[0].code):
         findings = sorted(set(findings) | set(built), key=Finding.sort_key)
-    return FileResult(path, findings, robot, companions=_companion_lines(robot))
+    return FileResult(path, findings, robot, companions=_companion_lines(robot),
+                      arguments=_arguments(robot, options.xacro_args))
+
+
+def _arguments(robot, given) -> list | None:
+    """:attr:`FileResult.arguments`: of ``given`` (the xacro arguments of the check), those
+    the robot's files name, and those they declare; None without any given (nothing read)."""
+    if not given:
+        return None
+    from urdftool.description.xacro_text import declared_arguments, unnamed_arguments
+
+    unnamed = unnamed_arguments(robot.sources, given)
+    return [sorted(name for name in given if name not in unnamed),
+            declared_arguments(robot.sources)]
 
 
 def _part_noted(path: str, error: LoadError, options: CheckOptions) -> FileResult:
