@@ -123,35 +123,23 @@ def run(terminal: Terminal, /, *, words, arg, package, format, output, select,
 
 def _unnamed_arguments(run, args: dict[str, str]) -> list[str]:
     """A warning for each xacro argument given (``--arg``, ``NAME:=VALUE``) that no file any
-    robot of the run read names: it changes nothing (``check --arg lenght=2`` was silent where
-    the robot commands warn). Said once for the run, not per robot: an argument one robot of
-    a folder reads and another does not is no mistake. Not said when what a robot read is not
-    known (a run the result cache served whole): said only when it holds."""
+    robot of the run was built from names: it changes nothing (``check --arg lenght=2`` was
+    silent where the robot commands warn). Said once for the run, not per robot: an argument
+    one robot of a folder reads and another does not is no mistake. Read from what each check
+    kept of its robot's text (``FileResult.arguments``, made where the robot was built, and
+    kept by the result cache): nothing is read again (every file each robot read was, from
+    disk). Not said when that is not known for a robot (one that did not load, a result
+    kept before it was kept): said only when it holds."""
     if not args or not run.results:
         return []  # (before the imports: a check without --arg imports no mesh module here)
-    from pathlib import Path
-
-    from urdftool.description.files import read_regular
-    from urdftool.description.meshes import MESH_EXTENSIONS
-    from urdftool.description.xacro_text import argument_warnings
+    arguments = [result.arguments for result in run.results]
+    if any(kept is None for kept in arguments):
+        return []
+    from urdftool.description.xacro_text import run_argument_warnings
     from urdftool.report.summary import counted
 
-    paths = set()
-    for result in run.results:
-        read = result.read if result.record is None else [
-            found.real for found in result.record.reads().values() if found.failure is None]
-        if not read:
-            return []
-        paths.update(read)
-    sources = {}
-    for path in sorted(paths):
-        if Path(path).suffix.lower() in MESH_EXTENSIONS:
-            continue  # (not read again: a mesh names no argument)
-        try:
-            sources[path] = read_regular(path)
-        except OSError:
-            return []  # (changed since: what it named is not known)
-    return argument_warnings(sources, args, f"the {counted(len(run.results), 'robot')} checked")
+    return run_argument_warnings(arguments, args, f"the {counted(len(run.results), 'robot')} "
+                                 "checked")
 
 
 def _undeclared(run) -> str:

@@ -166,6 +166,43 @@ def test_a_xacro_argument_no_robot_checked_names_is_said_once_on_standard_error(
     assert named.exit_code == 0 and named.stderr == "", named.output
 
 
+def test_the_argument_warning_reads_what_each_check_kept_not_the_disk_again():
+    """check's warning of an argument no file names read every file each robot read again
+    from disk (99 for the humanoid: its meshes skipped, its SRDF, YAML and package.xml not);
+    it reads what each check kept of its robot's text (FileResult.arguments, made where the
+    robot was built): files gone since change nothing (read again, they silenced it)."""
+    from urdftool import checking
+    from urdftool.lint.options import FileResult
+    from urdftool.lint.runner import Run
+
+    run = Run([FileResult("long.urdf.xacro", [], read=("/gone/long.urdf.xacro",),
+                          arguments=[["length"], ["length"]]),
+               FileResult("wide.urdf.xacro", [], read=("/gone/wide.urdf.xacro",),
+                          arguments=[["width"], ["width"]])])
+    assert checking._unnamed_arguments(run, {"lenght": "2", "width": "3"}) == [
+        "xacro argument 'lenght' (lenght:=2) is named by no file of the 2 robots checked (no "
+        "<xacro:arg name=\"lenght\">, no $(arg lenght)): it changes nothing; did you mean "
+        "'length'?"]
+    unknown = Run([FileResult("long.urdf.xacro", [], read=("/gone/long.urdf.xacro",))])
+    assert checking._unnamed_arguments(unknown, {"lenght": "2"}) == []  # not known: not said
+
+
+def test_the_argument_warning_is_said_when_the_result_cache_serves_the_check(run_cli,
+                                                                            tmp_path):
+    """The result cache keeps what the check read of the arguments (schema 8), so a second
+    run, served by the cache, warns as the first."""
+    folder = tmp_path / "robots"
+    folder.mkdir()
+    (folder / "long.urdf.xacro").write_text(ARGUED.format(name="long", arg="length"))
+    words = ["check", folder / "long.urdf.xacro", "--arg", "lenght=2", "--cache-dir",
+             tmp_path / "cache"]
+    first, second = run_cli(*words), run_cli(*words)
+    assert first.exit_code == second.exit_code == 0, second.output
+    assert "xacro argument 'lenght' (lenght:=2) is named by no file" in first.stderr
+    assert second.stderr == first.stderr
+    assert list((tmp_path / "cache").rglob("*")), "nothing was cached"
+
+
 def test_a_check_without_an_argument_imports_no_mesh_module(tmp_path):
     """The warning of an argument no file names reads what each robot read, skipping meshes by
     their extension: asked before anything is given, it imported the mesh package for every

@@ -287,15 +287,90 @@ def test_a_d_h_table_that_does_not_fit_is_a_usage_error_named_by_its_file(run_cl
             result.stderr.startswith(f"urdftool: error: {message}"), result.stderr
 
 
-@pytest.mark.parametrize("command", ["tree", "fk"])
-def test_an_only_link_without_a_name_is_said_as_that_not_as_no_link(tmp_path, run_cli, command):
-    """check_urdf takes ``<link/>`` alone (a link named ''), so U103 there is no refusal of
-    urdfdom; urdftool's model names every link, and the commands said "robot has no <link>
-    elements" of it. A ``name=""`` link is posed."""
+@pytest.mark.parametrize("command", ["tree", "fk", "inertia", "dynamics", "collisions"])
+def test_an_only_link_without_a_name_is_the_link_urdfdom_takes(tmp_path, run_cli, command):
+    """check_urdf takes ``<link/>`` alone as a link named '' (U103 Taken: no refusal of
+    urdfdom), and so does Pinocchio; every command poses it as ``name=""`` is posed. They
+    refused it before ("urdftool's model names every link"). urdfdom's parseLink stops at the
+    missing name: what the link holds is in no model of urdfdom or Pinocchio (mass 0 where
+    ``name=""`` keeps 1 kg), and the commands say so."""
     path = tmp_path / "r.urdf"
-    path.write_text('<robot name="r">\n<link/></robot>')
-    result = run_cli(command, "--timeout", "0", "--max-memory", "0", path)
-    assert result.exit_code == 1
-    assert f"{path}:2: error: the robot's only <link> has no name attribute" in result.stderr
-    path.write_text('<robot name="r">\n<link name=""/></robot>')
-    assert run_cli(command, "--timeout", "0", "--max-memory", "0", path).exit_code == 0
+    for link in ("<link/>", '<link name=""/>', f"<link>{_INERTIAL}</link>"):
+        path.write_text(f'<robot name="r">\n{link}</robot>')
+        result = run_cli(command, "--timeout", "0", "--max-memory", "0", path)
+        assert result.exit_code == 0, result.output
+        said = f"{path}:2: <link> has no name attribute: urdfdom reads it as the link ''"
+        assert (said in result.stderr) == (_INERTIAL in link), result.stderr
+
+
+_INERTIAL = ('<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" '
+             'iyz="0"/></inertial>')
+
+
+def test_an_only_link_without_a_name_has_pinocchios_mass(tmp_path, run_cli):
+    """dynamics' total mass of a lone link is Pinocchio's: 0 without a name (urdfdom read
+    nothing in it), 1 kg with one."""
+    import pinocchio
+
+    path = tmp_path / "r.urdf"
+    for attribute in ("", ' name="a"'):
+        path.write_text(f'<robot name="r"><link{attribute}>{_INERTIAL}</link></robot>')
+        model = pinocchio.buildModelFromUrdf(str(path))
+        mass = sum(inertia.mass for inertia in model.inertias)
+        result = run_cli("dynamics", "--timeout", "0", "--max-memory", "0", path, "-f", "json")
+        assert json.loads(result.stdout)["total_mass"] == pytest.approx(mass)
+        assert mass == (1.0 if attribute else 0.0)
+
+
+
+
+def _beside_the_tree() -> str:
+    """``r -> x`` and a loop ``a <-> b`` no joint from the root reaches, every link with a
+    mass and a box."""
+    def link(name, mass):
+        return (f'<link name="{name}"><inertial><mass value="{mass}"/><inertia ixx="1" iyy="1" '
+                'izz="1" ixy="0" ixz="0" iyz="0"/></inertial><collision><geometry><box '
+                'size="0.1 0.1 0.1"/></geometry></collision><visual><geometry><box '
+                'size="0.1 0.1 0.1"/></geometry></visual></link>')
+
+    def joint(name, parent, child, kind="fixed"):
+        return (f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child '
+                f'link="{child}"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" '
+                'velocity="1"/></joint>')
+
+    return ('<robot name="r">' + link("r", 1) + link("x", 2) + link("a", 3) + link("b", 4)
+            + joint("j0", "r", "x", "revolute") + joint("j1", "a", "b") + joint("j2", "b", "a")
+            + "</robot>")
+
+
+@pytest.mark.parametrize("command", ["tree", "fk", "inertia", "dynamics", "collisions",
+                                     "render"])
+def test_the_links_beside_the_tree_are_left_out_by_every_command(tmp_path, run_cli, command):
+    """A loop beside the tree (U109 Taken: check_urdf drops its links): every command works
+    on the links urdfdom's tree holds and names the ones left out. inertia listed the loop's
+    links, render died in trimesh's scene graph ("Iteration limit exceeded!"), collisions in a
+    KeyError, where fk, tree and dynamics (Pinocchio) left them out."""
+    path = tmp_path / "r.urdf"
+    path.write_text(_beside_the_tree())
+    extra = {"render": ("-o", str(tmp_path / "r.png")), "inertia": ("-f", "json"),
+             "fk": ("-f", "json")}.get(command, ())
+    result = run_cli(command, "--timeout", "0", "--max-memory", "0", path, *extra)
+    assert result.exit_code in ((0, 1) if command == "inertia" else (0,)), result.output
+    assert "2 links beside the tree" in result.stderr and "'a', 'b'" in result.stderr
+    if command == "inertia":
+        assert [row["link"] for row in json.loads(result.stdout)["links"]] == ["r", "x"]
+        assert run_cli(command, "--timeout", "0", "--max-memory", "0", path,
+                       "--link", "a").exit_code == 2  # as fk --frame a
+    if command == "fk":
+        assert [row["frame"] for row in json.loads(result.stdout)["frames"]] == ["r", "x"]
+
+
+def test_dynamics_beside_the_tree_has_pinocchios_mass(tmp_path, run_cli):
+    import pinocchio
+
+    path = tmp_path / "r.urdf"
+    path.write_text(_beside_the_tree())
+    model = pinocchio.buildModelFromUrdf(str(path))
+    result = run_cli("dynamics", "--timeout", "0", "--max-memory", "0", path, "-f", "json")
+    assert json.loads(result.stdout)["total_mass"] == pytest.approx(
+        sum(inertia.mass for inertia in model.inertias)) == pytest.approx(3.0)

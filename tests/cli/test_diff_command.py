@@ -148,7 +148,8 @@ def test_rev_compares_with_the_committed_file(run_cli, tmp_path):
 
 def test_a_side_yourdfpy_cannot_draw_is_located_in_its_own_file(run_cli, pair, tmp_path):
     nameless = tmp_path / "nameless.urdf"
-    nameless.write_text(ARM.replace('<link name="hand"/>', '<link name="hand"/><link/>'))
+    nameless.write_text(ARM.replace('<visual><geometry><box size="0.2 0.2 0.1"/>',
+                                    '<visual><geometry><box/>'))
     result = run_cli("diff", nameless, pair[1], "--render", tmp_path / "d.png")
     assert result.exit_code == 1
     assert "nameless.urdf: error: yourdfpy cannot build the scene" in result.output

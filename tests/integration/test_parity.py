@@ -103,8 +103,10 @@ def _loop_below(size: int) -> str:
 # hangs. STRICTER: check_urdf accepts and urdftool refuses; the reason, measured, is written.
 # The last item is what `tree` and `fk` do with it (POSES: exit 0, tree printing what
 # check_urdf prints; REFUSES: exit 1 at the errors' lines): they refuse a shape urdfdom takes
-# only where urdftool's own model cannot pose it (fk: a link with two parents, U107; mimic
-# loops, which no value satisfies), never as urdfdom's refusal.
+# only where no model poses it as written (fk: a link with two parents, U107, which Pinocchio
+# hangs under one parent or refuses, by the joints' names; mimic loops, which no value
+# satisfies and Pinocchio's mimic model refuses: measured by the two tests after the table),
+# never as urdfdom's refusal.
 AGREES = "agrees"
 POSES, REFUSES = "poses", "refuses"
 SHAPES = {
@@ -170,7 +172,11 @@ SHAPES = {
                                          + _joint("j1", "r", "b") + _joint("j2", "a", "b"),
                                          "accepts", {"U107"}, "stricter, and not a URDFDOM "
                                          "code: urdfdom lists b twice (under r and under a), "
-                                         "its parent is the last joint read", (POSES, REFUSES)),
+                                         "its parent joint the one whose name sorts last; "
+                                         "fk refuses it: b has two poses, and Pinocchio poses "
+                                         "it under that joint or refuses the robot, by the "
+                                         "joints' names (test_fk_refuses_what_pinocchio_"
+                                         "poses_by_name_or_not_at_all)", (POSES, REFUSES)),
     "empty joint name": (_link("r", "a") + _joint("", "r", "a"), "accepts", {"U103"},
                          "stricter: urdfdom refuses a joint without a name attribute but "
                          "takes name=\"\"; a joint no /joint_states, controller or "
@@ -184,14 +190,21 @@ SHAPES = {
                                        "''); no joint can attach to it", (POSES, POSES)),
     "link without a name, the only link": ("<link/>", "accepts", {"U103"},
                                            "stricter: urdfdom logs 'No name given for the "
-                                           "link.' and takes it as a link named ''; urdftool's "
-                                           "model names every link, so its commands say so "
-                                           "and stop", (REFUSES, REFUSES)),
+                                           "link.' and takes it as a link named '' (read no "
+                                           "further: what it holds is dropped); no joint can "
+                                           "attach to it", (POSES, POSES)),
+    "link without a name holding an inertial, the only link": (
+        '<link><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" '
+        'iyz="0"/></inertial></link>', "accepts", {"U103"}, "stricter (as above)",
+        (POSES, POSES)),
     "mimic joints that mimic each other": (_link("r", "a", "b") + _joint("ja", "r", "a", "jb")
                                            + _joint("jb", "r", "b", "ja"), "accepts",
                                            {"U211"}, "stricter, and not a URDFDOM code: "
                                            "urdfdom does not read <mimic> against the joints; "
-                                           "no value satisfies a loop of mimics",
+                                           "fk refuses it: no value satisfies a loop of mimics, "
+                                           "and Pinocchio's model with its mimic joints "
+                                           "refuses it ('The parent joint of the mimic joint "
+                                           "is not in the kinematic tree')",
                                            (POSES, REFUSES)),
     "mimic loop of 3": (_link("r", "a", "b", "c") + _joint("ja", "r", "a", "jc")
                         + _joint("jb", "r", "b", "ja") + _joint("jc", "r", "c", "jb"),
@@ -204,6 +217,49 @@ SHAPES = {
                                      + _joint("jb", "r", "b", "ja") + _joint("jc", "r", "c", "jb"),
                                      "accepts", set(), AGREES, (POSES, POSES)),
 }
+
+
+_MIMIC_LOOPS = ("mimic joints that mimic each other", "mimic loop of 3", "a joint mimicking itself")
+
+
+@pytest.mark.parametrize("shape", _MIMIC_LOOPS)
+def test_pinocchio_refuses_the_mimic_loops_fk_refuses(shape, tmp_path):
+    """The mimic shapes urdfdom takes and fk refuses (U210, U211): Pinocchio's model read
+    with its mimic joints refuses each too (read without them, its frames ignore what the
+    URDF says of those joints: no pose of the robot as written)."""
+    pinocchio = pytest.importorskip("pinocchio")
+    path = tmp_path / "shape.urdf"
+    path.write_text(f'<robot name="r">{SHAPES[shape][0]}</robot>')
+    with pytest.raises(ValueError, match="mimic joint is not in the kinematic tree"):
+        pinocchio.buildModelFromUrdf(str(path), mimic=True)
+
+
+def test_fk_refuses_what_pinocchio_poses_by_name_or_not_at_all(tmp_path):
+    """A link with two parent joints (U107; urdfdom takes it): Pinocchio hangs it under the
+    joint whose name sorts last (b 1 m out under r, or under a 5 m up) or refuses the robot
+    ("Model does not have any body named a"), by the joints' names alone: no pose of it to
+    give, so fk refuses it."""
+    pinocchio = pytest.importorskip("pinocchio")
+
+    def joint(name, parent, child, xyz):
+        return (f'<joint name="{name}" type="fixed"><origin xyz="{xyz}"/><parent '
+                f'link="{parent}"/><child link="{child}"/></joint>')
+
+    placed = {}
+    for names in (("j1", "j2"), ("z1", "a2"), ("a1", "z2")):
+        text = (f'<robot name="r">{_link("r", "a", "b")}{joint("j0", "r", "a", "0 0 5")}'
+                f'{joint(names[0], "r", "b", "1 0 0")}{joint(names[1], "a", "b", "0 0 0")}'
+                "</robot>")
+        try:
+            model = pinocchio.buildModelFromXML(text)
+        except ValueError as error:
+            placed[names] = str(error)
+            continue
+        data = model.createData()
+        pinocchio.framesForwardKinematics(model, data, pinocchio.neutral(model))
+        placed[names] = data.oMf[model.getFrameId("b")].translation.tolist()
+    assert placed[("j1", "j2")] == [0, 0, 5] and placed[("z1", "a2")] == [1, 0, 0]
+    assert "does not have any body named a" in placed[("a1", "z2")]
 
 
 def outcome(verdict) -> str:

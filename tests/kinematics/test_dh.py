@@ -309,6 +309,36 @@ def test_cli_dh_text_and_located_error(run_cli, tmp_path):
     assert result.stderr.startswith(f"urdftool: error: {path}:2: joint 'fly' is floating")
 
 
+# two joints whose axes are antiparallel to 1e-9 rad, a joint's offset 0.49 m: the common
+# normal of axes that are neither parallel to _EPS nor apart enough to place (found by fuzzing)
+NEARLY_PARALLEL = (
+    '<robot name="r"><link name="l0"/><link name="l1"/>'
+    '<joint name="j0" type="revolute"><parent link="l0"/><child link="l1"/>'
+    '<origin xyz="3.7226086368378395e-07 2.442014750133396e-09 -1.1780589691969552"'
+    ' rpy="7.471601859788264e-10 3.1415926546649646 0"/>'
+    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+    '<link name="l2"/><joint name="j1" type="prismatic"><parent link="l1"/>'
+    '<child link="l2"/>'
+    '<origin xyz="0.49395781119002047 2.592438446614699e-07 0"'
+    ' rpy="-3.0788012408650447e-09 -1.546258446280463e-10 3.1415926587183836"/>'
+    '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+    '</robot>')
+
+
+@pytest.mark.parametrize("convention", ["standard", "modified"])
+def test_cli_dh_an_axis_it_cannot_place_is_the_chains_not_the_robots(run_cli, tmp_path,
+                                                                   convention):
+    """The chain the user chose goes through a joint the construction cannot place: a usage
+    error (exit 2, at the joint), as a joint without a D-H form; it exited 1 as if the robot
+    were at fault, where another --base or --tip answers it."""
+    path = tmp_path / "p.urdf"
+    path.write_text(NEARLY_PARALLEL)
+    result = run_cli("dh", path, "--base", "l0", "--tip", "l2", "--convention", convention)
+    assert result.exit_code == 2, result.output
+    assert "its axis cannot be placed in D-H form" in result.stderr
+    assert "choose a --base or --tip that leaves it out" in result.stderr
+
+
 def test_cli_dh_base_defaults_to_the_root_and_needs_one(run_cli, tmp_path):
     """Like ik, fk and workspace, --base defaults to the root link; without a single root the
     table has no start, said at the robot (exit 1), not as a traceback."""
@@ -495,3 +525,36 @@ def test_a_table_length_past_the_farthest_coordinate_is_refused(tmp_path, humano
             as refused:
         dh.load_table(str(path))
     assert refused.value.where.endswith(where)
+
+
+@pytest.mark.parametrize("x", ["0", "1e8", "4e10"])
+def test_the_text_table_read_back_reproduces_the_chain_to_its_decimals(tmp_path, run_cli, x):
+    """The text table printed 6 decimals of every number: 1e8 m from its base link, a theta
+    off by 5e-7 rad moved the tip by metres. Its numbers read back (theta, d, a, alpha, the
+    base's and tool's xyz and rpy) reproduce the extracted table to 1e-6 m and rad wherever
+    the chain is (or what a float resolves there, past 1e9 m): angles get a decimal more for each power of ten the chain reaches, lengths
+    keep 6, never past the 17 digits a float holds."""
+    from urdftool.kinematics.transforms import from_xyz_rpy
+
+    path = tmp_path / "far.urdf"
+    path.write_text(FAR_CHAIN.format(x=x))
+    result = run_cli("dh", path, "--base", "w", "--tip", "c")
+    assert result.exit_code == 0, result.output
+    exact = dh.extract(load(str(path)), "w", "c")
+    rows, frames = [], {}
+    for line in result.stdout.splitlines():
+        words = line.split()
+        if words and words[0] in {row.joint for row in exact.joints}:
+            rows.append(dh.DHJoint(words[0], words[1], *map(float, words[2:6])))
+        elif words and words[0] in ("base:", "tool:"):
+            frames[words[0]] = from_xyz_rpy([float(w) for w in words[2:5]],
+                                            [float(w) for w in words[6:9]])
+        assert all(len(word.replace("-", "").replace(".", "")) <= 17 for word in words
+                   if word.lstrip("-")[:1].isdigit()), line
+    printed = dh.DHTable(exact.convention, frames["base:"], frames["tool:"], rows, "w", "c", 0.0)
+    q = np.random.default_rng(0).uniform(-1, 1, (64, len(rows)))
+    ours, theirs = dh.table_fk(printed, q), dh.table_fk(exact, q)
+    # (4e10 m out a float resolves 7.6e-6 m: there the table is held to what dh holds it to)
+    tolerance = max(1e-6, dh._tolerance(exact.base))
+    assert np.abs(ours[:, :3, 3] - theirs[:, :3, 3]).max() <= tolerance
+    assert np.abs(ours[:, :3, :3] - theirs[:, :3, :3]).max() <= 1e-6

@@ -262,9 +262,26 @@ def test_an_open_surface_faces_nowhere(tmp_path):
 
 
 def test_a_missing_attribute_yourdfpy_needs_is_named(tmp_path):
-    robot = load_text(tmp_path, '<robot name="r"><link name="a"/><link/></robot>')
+    robot = load_text(tmp_path, '<robot name="r"><link name="a"/><link name="b"/><joint '
+                      'type="fixed"><parent link="a"/><child link="b"/></joint></robot>')
     with pytest.raises(SceneError, match="an element lacks its 'name' attribute"):
         posed(robot)
+
+
+def test_a_link_without_a_name_is_urdfdoms_empty_link_and_the_loop_beside_the_tree_left_out(
+        tmp_path):
+    """An only ``<link>`` without a name is urdfdom's link '' with nothing in it (yourdfpy
+    refused it: "an element lacks its 'name' attribute"); a loop beside the tree is dropped
+    as urdfdom drops it (trimesh's scene graph went round it: "Iteration limit exceeded!")."""
+    box = '<visual><geometry><box size="1 1 1"/></geometry></visual>'
+    scene, _ = posed(load_text(tmp_path, f'<robot name="r"><link>{box}</link></robot>'))
+    assert len(scene.triangles) == 0
+    scene, _ = posed(load_text(tmp_path, (
+        f'<robot name="r"><link name="r">{box}</link><link name="a">{box}</link><link '
+        f'name="b">{box}</link><joint name="j1" type="fixed"><parent link="a"/><child '
+        'link="b"/></joint><joint name="j2" type="fixed"><parent link="b"/><child link="a"/>'
+        '</joint></robot>')))
+    assert scene.links == ["r"]
 
 
 def test_a_long_chain_is_posed_without_walking_each_links_path_from_the_base(tmp_path,

@@ -774,3 +774,57 @@ def test_rows_over_the_limit_are_refused_before_the_model_is_built(tmp_path, mon
         build(robot, max_rows=11)
     monkeypatch.undo()
     assert len(build(robot, max_rows=12).joints) == 12
+
+
+def test_the_q_help_names_the_coordinates_dynamics_takes(tmp_path, run_cli):
+    """``dynamics --help`` said "Joint position (repeatable)" alone: how a planar joint's and a
+    floating joint's values are given was in the docs only. Each name the help gives is taken
+    (and moves the robot: P changes)."""
+    from urdftool.kinematics.configuration import FLOATING_COORDINATES, PLANAR_COORDINATES
+
+    said = " ".join(run_cli("dynamics", "--help").stdout.split())
+    assert "A planar joint is three: JOINT.x, JOINT.y [m]" in said and "JOINT.yaw" in said
+    assert "floating joint (and --floating's root_joint) six: JOINT.x, .y, .z [m] and " \
+        ".roll, .pitch, .yaw [rad]" in said
+    assert PLANAR_COORDINATES == ("x", "y", "yaw")
+    assert FLOATING_COORDINATES == ("x", "y", "z", "roll", "pitch", "yaw")
+    path = tmp_path / "plane.urdf"
+    path.write_text(PLANAR.format(base=PLANE))
+    for coordinate in PLANAR_COORDINATES:
+        result = run_cli("dynamics", path, "--q", f"slide.{coordinate}=0.5", "-f", "json")
+        assert result.exit_code == 0, result.output
+        assert json.loads(result.stdout)["q"] == {f"slide.{coordinate}": 0.5}
+    for coordinate in FLOATING_COORDINATES:
+        result = run_cli("dynamics", path, "--floating", "--q", f"root_joint.{coordinate}=0.5",
+                         "-f", "json")
+        assert result.exit_code == 0, result.output
+
+
+@pytest.mark.parametrize("floating", [False, True])
+def test_the_total_mass_counts_the_root_link_that_pinocchios_leaves_out(floating):
+    """urdftool's total mass and centre of mass count every link; Pinocchio's computeTotalMass
+    and centerOfMass leave out the body fixed to the universe (the root link and the links
+    fixed to it: the humanoid's 0.95 kg). Both ways: ours is Pinocchio's plus ``fixed_mass``
+    (its centre of mass weighted in), and with a free base, where nothing is fixed to the
+    universe, the two are equal and ``fixed_mass`` is 0."""
+    import pinocchio as pin
+
+    humanoid = load(str(ROBOTS / "humanoid" / "humanoid.urdf.xacro"))
+    model = build(humanoid, floating=floating)
+    joints = [name for name in model.joints if not name.startswith("root_joint.")]
+    values = dict(zip(joints, np.linspace(-0.4, 0.4, len(joints))))
+    if floating:
+        values.update({"root_joint.z": 0.3, "root_joint.yaw": 0.5})
+    result = state(model, values)
+    q = model.configuration(values)
+    m, d = model.model, model.model.createData()
+    theirs = pin.computeTotalMass(m)
+    com = pin.centerOfMass(m, d, q)
+    fixed = m.inertias[0]
+    assert result.fixed_mass == pytest.approx(0.0 if floating else 0.95)
+    assert result.mass == pytest.approx(theirs + result.fixed_mass)
+    expected = (theirs * com + result.fixed_mass * fixed.lever) / result.mass
+    assert np.allclose(result.com, expected, atol=1e-12)
+    if floating:
+        assert np.allclose(result.com, com, atol=1e-12)
+    assert json.loads(json.dumps(result.as_dict()))["fixed_mass"] == result.fixed_mass

@@ -216,7 +216,40 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
         _refuse_linkless(robot)
     if command in POSING:
         refuse_refused(robot, posing=True)
+    if command != "xacro":
+        _warn_unread_link(robot)
+        _warn_beside_the_tree(robot, command)
     return robot
+
+
+def _warn_beside_the_tree(robot, command: str) -> None:
+    """A warning naming the links beside the tree (a loop of joints no root reaches), which
+    urdfdom drops and so does every command (``check`` says why: the loop's finding)."""
+    from urdftool.errors import listed
+    from urdftool.kinematics.tree import beside_the_tree
+
+    dropped = beside_the_tree(robot)
+    if dropped:
+        warn([f"{len(dropped)} link{'s' * (len(dropped) > 1)} beside the tree, which no joint "
+              f"from the root reaches, left out as urdfdom leaves {'them' if len(dropped) > 1 else 'it'} "
+              f"out of its model: {listed(dropped)} ('urdftool check' says why)"])
+
+
+def _warn_unread_link(robot) -> None:
+    """A warning for a link without a ``name`` that holds anything, on a robot urdfdom takes
+    (the only link: U103's shape urdfdom takes, the link ``''``): urdfdom's parseLink stops at
+    the missing name, so its model (check_urdf's, robot_state_publisher's, Pinocchio's, which
+    ``fk``, ``ik`` and ``dynamics`` compute with) has the link and nothing in it, and so do
+    ``collisions`` and ``render`` (``inertia`` compares what the file declares)."""
+    names = robot.names()
+    for link in robot.children("link"):
+        held = sorted({child.tag for child in link if isinstance(child.tag, str)})
+        if names[link] is None and held:
+            warn([f"{robot.locate(link)}: <link> has no name attribute: urdfdom reads it as "
+                  f"the link '' and stops there, so its {', '.join(f'<{t}>' for t in held)} "
+                  "are in no model urdfdom or Pinocchio builds, nor in the commands that pose "
+                  "the robot (dynamics: no mass; collisions, render: no shape); give it a "
+                  "name"])
 
 
 def warn_unnamed_arguments(robot, args: dict[str, str]) -> None:
@@ -271,22 +304,14 @@ def refuse_refused(robot, posing: bool = False) -> None:
 
 def _refuse_linkless(robot) -> None:
     """A robot without a link has nothing to compute or draw: urdfdom's refusal (U106) at its
-    line, exit 1, as ``tree`` gives it; an only link without a name, which urdfdom takes as
-    ``''``, said as that at its line. Each command found its own words for it before: 'no
-    root link (a cycle?)', an empty graph, '(0 links)', a picture of 0 triangles."""
+    line, exit 1, as ``tree`` gives it. Each command found its own words for it before: 'no
+    root link (a cycle?)', an empty graph, '(0 links)', a picture of 0 triangles. (An only
+    ``<link/>`` is a link: the link ``''``, as urdfdom reads it; Robot.links.)"""
     from urdftool.lint.engine import urdfdom_refusals
 
     refusals = urdfdom_refusals(robot)
-    unnamed = robot.children("link")  # (links, none of them named: an only <link/>)
     if refusals:
         report_findings(robot.path, refusals)
-    elif unnamed:
-        where = robot.locate(unnamed[0])
-        message = ("the robot's only <link> has no name attribute: urdfdom takes it as a link "
-                   "named '' (check_urdf: 'root Link:  has 0 child(ren)'), urdftool's model "
-                   "names every link; give it a name")
-        say(f"{where}: error: {message}", err=True)
-        _error_document(message=message, location=where)
     else:
         say(f"{robot.locate(robot.root)}: error: robot has no <link> elements", err=True)
         _error_document(message="robot has no <link> elements", location=robot.locate(robot.root))

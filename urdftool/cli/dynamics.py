@@ -17,16 +17,25 @@ def register(app: typer.Typer) -> None:
     app.command("dynamics", help="Mass, centre of mass, energies K, P, L, M(q), G(q), C(q,v), "
                                  "torques with damping and friction, with a fixed or a "
                                  "--floating base, standing on --support, and gravity margins "
-                                 "against effort limits.")(budgeted(dynamics))
+                                 "against effort limits. The total mass and centre of mass "
+                                 "count every link, the root link and the links fixed to it "
+                                 "too (Pinocchio's computeTotalMass and centerOfMass leave "
+                                 "those out: 'fixed_mass' in JSON).")(budgeted(dynamics))
 
 
 def dynamics(
     words: list[str] = typer.Argument(..., metavar="FILE [NAME:=VALUE...]"),
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE", help="Joint position "
                                 "(repeatable); others take 0, or mid-range when 0 is outside "
-                                "their limits."),
+                                "their limits. A planar joint is three: JOINT.x, JOINT.y [m] "
+                                "in its frame's xy plane and JOINT.yaw [rad] about its z; a "
+                                "floating joint (and --floating's root_joint) six: JOINT.x, "
+                                ".y, .z [m] and .roll, .pitch, .yaw [rad] (fixed axes, as "
+                                "URDF's rpy)."),
     v: list[str] = typer.Option([], "--v", "--qd", metavar="JOINT=VALUE",
-                                help="Joint velocity (for C, tau and the kinetic energy K)."),
+                                help="Joint velocity (for C, tau and the kinetic energy K); on "
+                                     "a planar or floating joint's names (JOINT.x, ...) the "
+                                     "child's twist in its own frame."),
     a: list[str] = typer.Option([], "--a", metavar="JOINT=VALUE", help="Joint acceleration."),
     deg: bool = typer.Option(False, "--deg", help="Angles in degrees (and deg/s, deg/s^2)."),
     samples: int = typer.Option(0, "--samples", metavar="N", help="Worst gravity torque per "

@@ -50,7 +50,9 @@ def ik(
                                          "exit 1 if one is not."),
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE",
                                 help="Joint value (repeatable): the first seed, and where the "
-                                     "joints off the limb stay."),
+                                     "joints off the limb stay (a planar joint's as JOINT.x, "
+                                     ".y, .yaw; a limb through one is refused: choose a --base "
+                                     "below it)."),
     deg: bool = typer.Option(False, "--deg", help="Angles (--q, --rpy, files) in degrees."),
     seeds: int = typer.Option(SEEDS, "--seeds", metavar="N",
                               help="Starting points: --q, then N-1 random ones in limits."),

@@ -25,7 +25,9 @@ def workspace(
     samples: int = typer.Option(2000, "--samples", metavar="N", help="Configurations drawn."),
     seed: int = typer.Option(0, "--seed", help="Random seed."),
     q: list[str] = typer.Option([], "--q", metavar="JOINT=VALUE",
-                                help="Value of a joint off the limb (repeatable)."),
+                                help="Value of a joint off the limb (repeatable; a planar "
+                                     "joint's as JOINT.x, .y, .yaw: a limb through one is "
+                                     "refused, choose a --base below it)."),
     deg: bool = typer.Option(False, "--deg", help="--q angles in degrees."),
     plot: str = typer.Option(None, "--plot", metavar="FILE.png|svg",
                              help="Top and side views shaded by manipulability, .svg or .png."),

@@ -72,10 +72,18 @@ class Geometry:
 
 
 def build(robot) -> Geometry:
-    """Collision parts of every link of ``robot``; unusable ones become problems."""
+    """Collision parts of every link of ``robot`` that urdfdom's model holds; unusable ones
+    become problems. A link beside the tree (:func:`~urdftool.kinematics.tree.
+    beside_the_tree`) is not posed (its parts were, as a KeyError), and an only link without a
+    name is the link ``''`` with nothing in it (Robot.links), as urdfdom reads them."""
+    from urdftool.kinematics.tree import beside_the_tree
+
     result = Geometry()
     meshes: dict = {}
+    dropped, names = set(beside_the_tree(robot)), robot.names()
     for name, link in robot.links.items():
+        if name in dropped or names[link] is None:
+            continue
         collisions = link.findall("collision")
         parts = []
         for collision in collisions:

@@ -285,8 +285,10 @@ class Robot(Record):
 
     @cached_property
     def links(self) -> dict[str, object]:
-        """Link elements by name; the first of duplicates wins."""
-        return _by_name(self.grouped(self.root).get("link", ()), self.names())
+        """Link elements by name; the first of duplicates wins. A link without a ``name``
+        attribute is the link named ``''``, as urdfdom reads it (it logs "No name given for the
+        link." and goes on: alone it is the root, beside another link a second one)."""
+        return _by_name(self.grouped(self.root).get("link", ()), self.names(), "")
 
     @cached_property
     def joints(self) -> dict[str, object]:
@@ -317,10 +319,13 @@ def _by_tag(children: list) -> dict[str, list]:
     return grouped
 
 
-def _by_name(elements, names: dict) -> dict:
+def _by_name(elements, names: dict, unnamed: str | None = None) -> dict:
+    """``unnamed``: the name an element without the attribute goes by (None: left out)."""
     found: dict = {}
     for element in elements:  # (their names as read once: Robot.names)
         name = names[element]
+        if name is None:
+            name = unnamed
         if name is not None and name not in found:
             found[name] = element
     return found

@@ -141,9 +141,35 @@ def unnamed_arguments(sources, args: dict[str, str]) -> dict[str, list[str]]:
                           for text in texts)]
     if not unnamed:
         return {}
-    declared = sorted({name.decode("utf-8", "replace") for data in sources.values()
-                       for name, _ in _ARG_DEFAULT.findall(data)})
+    declared = declared_arguments(sources)
     return {name: close_names(name, declared) for name in unnamed}
+
+
+def declared_arguments(sources) -> list[str]:
+    """The names of the ``<xacro:arg>`` the files of ``sources`` declare, sorted."""
+    return sorted({name.decode("utf-8", "replace") for data in sources.values()
+                   for name, _ in _ARG_DEFAULT.findall(data)})
+
+
+def run_argument_warnings(arguments: list, given: dict[str, str], whose: str) -> list[str]:
+    """A warning for each xacro argument of ``given`` that no robot's files name, with the
+    names any of them declares close to it, from what each check kept of its robot's text
+    (``arguments``: per robot, ``[named, declared]`` of ``given``, as
+    ``lint.options.FileResult.arguments``). The one wording of the robot commands (one robot,
+    :func:`argument_warnings`) and of check (every robot of the run)."""
+    from urdftool.errors import close_names, listed
+
+    named = {name for each, _ in arguments for name in each}
+    declared = sorted({name for _, each in arguments for name in each})
+    warnings = []
+    for name in given:
+        if name not in named:
+            close = close_names(name, declared)
+            hint = f"; did you mean {listed(close)}?" if close else ""
+            warnings.append(f"xacro argument '{name}' ({name}:={given[name]}) is named by no "
+                            f"file of {whose} (no <xacro:arg name=\"{name}\">, no $(arg {name})"
+                            f"): it changes nothing{hint}")
+    return warnings
 
 
 def argument_warnings(sources, args: dict[str, str], whose: str) -> list[str]:
@@ -151,16 +177,11 @@ def argument_warnings(sources, args: dict[str, str], whose: str) -> list[str]:
     that no file of ``sources`` names (:func:`unnamed_arguments`), with the declared names
     close to it: xacro takes it and it changes nothing (``--arg lenght=2`` computed the
     defaults without a word). ``whose``: what the files are, as the warning says it ("the
-    robot", "the 3 robots checked"). The one wording of the robot commands and of check."""
-    from urdftool.errors import listed
-
-    warnings = []
-    for name, close in unnamed_arguments(sources, args).items():
-        hint = f"; did you mean {listed(close)}?" if close else ""
-        warnings.append(f"xacro argument '{name}' ({name}:={args[name]}) is named by no file "
-                        f"of {whose} (no <xacro:arg name=\"{name}\">, no $(arg {name})): it "
-                        f"changes nothing{hint}")
-    return warnings
+    robot", "the 3 robots checked"). The robot commands' warning; check's is
+    :func:`run_argument_warnings`, in the same words."""
+    unnamed = unnamed_arguments(sources, args)
+    return run_argument_warnings([[[name for name in args if name not in unnamed],
+                                   declared_arguments(sources)]], args, whose)
 
 
 def resolved_spec(path: Path, spec: str, defaults: dict[str, str],

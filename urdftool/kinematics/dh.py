@@ -191,7 +191,9 @@ def extract(robot, base: str, tip: str, convention: str = "standard",
         error = np.abs(dh_matrices(theta, d, a, alpha, convention) - link).max()
         if not error <= tolerance:  # NaN included
             raise DHError(f"joint '{joint.get('name')}': its axis cannot be placed in D-H form "
-                          f"(residual {number(error, 2)}; axes nearly parallel?)", joint)
+                          f"(residual {number(error, 2)}; axes nearly parallel?); choose a --base "
+                          "or --tip that leaves it out", joint, asked=True)  # (a chain dh does
+            # not take, as a joint with no D-H form: another --base or --tip answers it)
         residual = max(residual, error)
         rows.append(DHJoint(joint.get("name"), kind, _clean(theta), _clean(d), _clean(a),
                             _clean(alpha)))

@@ -221,6 +221,27 @@ def _orientation(triangles) -> int:
     return 1 if volume > 0 else -1
 
 
+def _as_urdfdom_reads(robot, root) -> None:
+    """``root`` (the robot's URDF as yourdfpy will read it) made what urdfdom's model holds:
+    an only ``<link>`` without a name is the link ``''`` with nothing in it (Robot.links:
+    yourdfpy refused it, "an element lacks its 'name' attribute"), and the links beside the
+    tree and their joints are dropped (their loop sent trimesh's scene graph round it:
+    "Iteration limit exceeded!")."""
+    from urdftool.kinematics.tree import beside_the_tree
+
+    dropped = set(beside_the_tree(robot))
+    for link in list(root.iterchildren("link")):
+        if link.get("name") is None:
+            link.clear()
+            link.set("name", "")
+        elif link.get("name") in dropped:
+            root.remove(link)
+    for joint in list(root.iterchildren("joint")) if dropped else ():
+        ends = [joint.find(side) for side in ("parent", "child")]
+        if any(end is not None and end.get("link") in dropped for end in ends):
+            root.remove(joint)
+
+
 def _yourdfpy(robot, collision: bool):
     """yourdfpy's model of ``robot`` from its expanded URDF text, meshes not loaded; SceneError
     (with the element when known) for what yourdfpy cannot read."""
@@ -239,6 +260,7 @@ def _yourdfpy(robot, collision: bool):
                              remove_comments=True, remove_blank_text=True)
     root = etree.fromstring(robot.urdf.encode("utf-8"), parser)
     _follow_variables(robot, root)
+    _as_urdfdom_reads(robot, root)
     try:
         model = yourdfpy.URDF._parse_robot(root)
         _unit_axes(robot, model)

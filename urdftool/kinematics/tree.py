@@ -29,6 +29,31 @@ def root_link(robot) -> str:
     return roots[0]
 
 
+def beside_the_tree(robot) -> list[str]:
+    """The links urdfdom's tree leaves out, in document order: those no walk down the joints
+    from the root reaches (a loop of joints beside the tree, and what hangs from it), when the
+    robot has one root; else none (no tree to be beside). urdfdom builds its tree from the root
+    and drops them silently (check_urdf's listing, Pinocchio's model); every command that
+    poses the robot, and ``inertia``, leaves them out as it does."""
+    def find():
+        try:
+            root = root_link(robot)
+        except TreeError:
+            return []
+        children: dict[str, list] = {}  # (the joints' ends as read once: Robot.ends)
+        for ends in robot.ends().values():
+            children.setdefault(ends["parent"][1], []).append(ends["child"][1])
+        reached, stack = {root}, [root]
+        while stack:
+            for child in children.get(stack.pop(), ()):
+                if child not in reached:
+                    reached.add(child)
+                    stack.append(child)
+        return [name for name in robot.links if name not in reached]
+
+    return robot.memo(beside_the_tree, find)
+
+
 def own_free_base(robot) -> str | None:
     """The robot's own free base: a ``floating`` joint that is the only joint below a root
     link without an ``<inertial>`` (``world`` -> ``base_link``, as a simulator's description

@@ -71,9 +71,10 @@ from urdftool.description.record import entry_key
 from urdftool.diagnostics import Edit, Finding, Fix, Location, Severity, display_path
 from urdftool.errors import UsageError
 
-SCHEMA = 7  # 3: an entry's dependencies are its check's record; 4: findings' repeated parts;
+SCHEMA = 8  # 3: an entry's dependencies are its check's record; 4: findings' repeated parts;
 # 5: the names a message lists as available among those parts (urdftool.errors.available);
-# 6: an available list's detail says how many ("31 links"); 7: whether urdfdom takes a finding
+# 6: an available list's detail says how many ("31 links"); 7: whether urdfdom takes a finding;
+# 8: the xacro arguments given that the robot's files name (FileResult.arguments)
 FOLDER = ".urdftool_cache"
 MAX_ENTRY_BYTES = 16 * 1024 * 1024
 _NO_KEY = ("no signing key: $XDG_CACHE_HOME/urdftool/key (or ~/.cache/urdftool/key) could not "
@@ -101,6 +102,7 @@ class Cache:
         self._key = _secret()
         self._source = _source_stamp()
         self._verified: dict = {}  # (path, options) -> the record entries of a hit or a put
+        self._arguments: dict = {}  # (path, options) -> its FileResult.arguments, as kept
         self.failure: str | None = None  # why results could not be kept, the first time
         self._marks: bool | None = None  # whether the folder carries urdftool's marks
 
@@ -145,10 +147,17 @@ class Cache:
             if not isinstance(depends, list) or not unchanged(depends):
                 return None
             findings = [_finding(item) for item in content["findings"]]
+            arguments = _arguments(content.get("arguments"))
         except (ValueError, KeyError, TypeError, IndexError, AttributeError, OSError):
             return None
         self._verified[path, repr(options)] = depends
+        self._arguments[path, repr(options)] = arguments
         return findings
+
+    def arguments(self, path: str, options) -> list | None:
+        """The :attr:`~urdftool.lint.options.FileResult.arguments` kept with the result of
+        ``path`` checked with ``options`` (after a hit or a put; None otherwise)."""
+        return self._arguments.get((path, repr(options)))
 
     def reads(self, path: str, options) -> tuple[str, ...]:
         """The real paths of the files the check of ``path`` with ``options`` read, as kept
@@ -175,7 +184,8 @@ class Cache:
                     not unchanged(content["depends"], quick=True):
                 return None
             results = [FileResult(item["path"], [_finding(f) for f in item["findings"]],
-                                  companions=[str(line) for line in item["companions"]])
+                                  companions=[str(line) for line in item["companions"]],
+                                  arguments=_arguments(item.get("arguments")))
                        for item in content["results"]]
             return results, [bool(strict) for strict in content["strict"]], content["depends"]
         except (ValueError, KeyError, TypeError, IndexError, AttributeError, OSError):
@@ -223,7 +233,8 @@ class Cache:
         depends = list(unique.values())
         body = json.dumps({"schema": SCHEMA, "strict": run.strict, "depends": depends,
                            "results": [{"path": result.path, "companions": result.companions,
-                                        "findings": [_record(f) for f in result.findings]}
+                                        "findings": [_record(f) for f in result.findings],
+                                        "arguments": result.arguments}
                                        for result in run.results]})
         return depends if self._keep(self._run_path(paths, request), body) else None
 
@@ -243,9 +254,11 @@ class Cache:
         if not unchanged(depends):
             return
         body = json.dumps({"schema": SCHEMA, "depends": depends,
-                           "findings": [_record(f) for f in result.findings]})
+                           "findings": [_record(f) for f in result.findings],
+                           "arguments": result.arguments})
         if self._keep(self._entry_path(path, options), body):
             self._verified[path, repr(options)] = depends
+            self._arguments[path, repr(options)] = result.arguments
 
     def _keep(self, entry_path: Path, body: str) -> bool:
         """Write ``body``, signed, at ``entry_path``; False when it could not be (an unusable
@@ -421,3 +434,14 @@ def _source_stamp() -> str:
     """The count and newest modification of urdftool's source and data files
     (``__version__`` among them): a result is never read by other code than wrote it."""
     return tree_stamp(os.path.dirname(os.path.dirname(__file__)))
+
+
+def _arguments(kept) -> list | None:
+    """A kept ``FileResult.arguments``: ``[named, declared]``, two lists of names, or None;
+    ValueError for anything else (a malformed entry is a miss)."""
+    if kept is None:
+        return None
+    named, declared = kept
+    if not all(isinstance(name, str) for name in [*named, *declared]):
+        raise ValueError("arguments")
+    return [list(named), list(declared)]

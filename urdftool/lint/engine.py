@@ -41,7 +41,8 @@ URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
                              "U110", "U201", "U202", "U203", "U207", "U208", "U213",
                              "U023"})
 # ... and what the commands that pose a robot (fk, render...) refuse besides: a link with two
-# parent joints (U107), which urdfdom and Pinocchio hang under the joint whose name sorts last,
+# parent joints (U107), which urdfdom hangs under the joint whose name sorts last, Pinocchio
+# too or refuses the robot ("Model does not have any body named a"), by the joints' names, and
 # urdftool's kinematics and yourdfpy under neither (they stopped at it in their own words)
 POSING_REFUSES = URDFDOM_REFUSES | {"U107"}
 # ... but not a finding its rule says urdfdom takes (Finding.urdfdom_takes, from a
@@ -307,7 +308,20 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
         findings = check_robot(robot, options.selection)
     if built and options.selection.allows(built[0].code):
         findings = sorted(set(findings) | set(built), key=Finding.sort_key)
-    return FileResult(path, findings, robot, companions=_companion_lines(robot))
+    return FileResult(path, findings, robot, companions=_companion_lines(robot),
+                      arguments=_arguments(robot, options.xacro_args))
+
+
+def _arguments(robot, given) -> list | None:
+    """:attr:`FileResult.arguments`: of ``given`` (the xacro arguments of the check), those
+    the robot's files name, and those they declare; None without any given (nothing read)."""
+    if not given:
+        return None
+    from urdftool.description.xacro_text import declared_arguments, unnamed_arguments
+
+    unnamed = unnamed_arguments(robot.sources, given)
+    return [sorted(name for name in given if name not in unnamed),
+            declared_arguments(robot.sources)]
 
 
 def _part_noted(path: str, error: LoadError, options: CheckOptions) -> FileResult:

@@ -161,6 +161,11 @@ class FileResult(Record):
     record: what the check read, searched and resolved
         (:class:`~urdftool.description.record.Record`), when it was checked here
     read: the real paths of the files its check read, when a worker checked it
+    arguments: of the xacro arguments the check was given, those the files its robot was built
+        from name, and the arguments those files declare: ``[named, declared]``, read from
+        the robot's text where it was built (:attr:`~urdftool.description.robot.Robot.
+        sources`, the one owner of what it read), kept with the result; None when not known
+        (no argument given, a robot that did not load)
     """
 
     path: str
@@ -170,13 +175,15 @@ class FileResult(Record):
     companions: list[str]
     record: object | None
     read: tuple
+    arguments: list | None
 
-    __slots__ = ("path", "findings", "robot", "strict", "companions", "record", "read")
+    __slots__ = ("path", "findings", "robot", "strict", "companions", "record", "read",
+                 "arguments")
     _shown = ("path", "findings", "robot", "strict", "companions")
 
     def __init__(self, path: str, findings: list[Finding], robot: object | None = None,
                  strict: bool = False, companions: list[str] = NEW, record: object | None = None,
-                 read: tuple = ()) -> None:
+                 read: tuple = (), arguments: list | None = None) -> None:
         self.path = path
         self.findings = findings
         self.robot = robot
@@ -184,6 +191,7 @@ class FileResult(Record):
         self.companions = [] if companions is NEW else companions
         self.record = record
         self.read = read
+        self.arguments = arguments
 
     @property
     def unexpanded(self) -> bool:

@@ -75,23 +75,26 @@ def _check_files(files, options_for, jobs, timeout, memory, stdin_as, cache,
     work = _Checking([files[i] for i in todo], [named[i] for i in todo],
                      [options_for(files[i]) for i in todo], stdin, cache)
 
-    def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str], tuple, None]:
+    def stopped(index: int, stop: Stop) -> tuple[list[Finding], list[str], tuple, None, None]:
         from urdftool.lint.engine import stop_finding
 
-        return [stop_finding(named[todo[index]], stop, "checking")], [], (), None
+        return [stop_finding(named[todo[index]], stop, "checking")], [], (), None, None
 
     lines: list[list[str]] = [[] for _ in files]
     # (a file the cache holds: what its check read, as a worker says it)
     read: list[tuple] = [cache.reads(path, options_for(path)) if found is not None else ()
                          for path, found in zip(files, kept)]
+    arguments: list = [cache.arguments(path, options_for(path)) if found is not None else None
+                       for path, found in zip(files, kept)]
     checked = run_budgeted(len(todo), work, budget, stopped, jobs,
                            lambda done: finished(len(files) - len(todo) + done))
-    for index, (found, companions, paths, unkept) in zip(todo, checked):
-        kept[index], lines[index], read[index] = found, companions, paths
+    for index, (found, companions, paths, unkept, named_args) in zip(todo, checked):
+        kept[index], lines[index], read[index], arguments[index] = \
+            found, companions, paths, named_args
         if unkept:
             cache.failed(unkept)
-    return [FileResult(path, found, companions=companions, read=paths)
-            for path, found, companions, paths in zip(named, kept, lines, read)]
+    return [FileResult(path, found, companions=companions, read=paths, arguments=args)
+            for path, found, companions, paths, args in zip(named, kept, lines, read, arguments)]
 
 
 class _Checking(Record):
@@ -115,7 +118,7 @@ class _Checking(Record):
         self.cache = cache
 
     def __call__(self, index: int
-                 ) -> tuple[list[Finding], list[str], tuple[str, ...], str | None]:
+                 ) -> tuple[list[Finding], list[str], tuple[str, ...], str | None, list | None]:
         path, options = self.paths[index], self.options[index]
         from urdftool.lint import engine  # every rule: imported only when a file is checked
 
@@ -125,7 +128,8 @@ class _Checking(Record):
         read = tuple(found.real for found in result.record.reads().values()
                      if found.failure is None)  # (an output must not replace them)
         # why the result could not be kept, for the run to say once (a worker's cache is a copy)
-        return result.findings, result.companions, read, self.cache and self.cache.failure
+        return (result.findings, result.companions, read, self.cache and self.cache.failure,
+                result.arguments)
 
 
 class Run(Record):

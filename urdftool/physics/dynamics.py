@@ -230,6 +230,15 @@ def total_mass(model: Model) -> float:
     return float(sum(inertia.mass for inertia in model.model.inertias))
 
 
+def fixed_mass(model: Model) -> float:
+    """The mass [kg] of :func:`total_mass` that no joint moves: the root link's and the links
+    fixed to it (Pinocchio's ``inertias[0]``, the universe's body; 0 with a free base, whose
+    root link rides the free flyer). urdftool counts it in the total and the centre of mass, as
+    the robot weighs it; Pinocchio's ``computeTotalMass`` and ``centerOfMass`` leave it out
+    (a fixed base carries it): the two differ by it, said so."""
+    return float(model.model.inertias[0].mass)
+
+
 def centre_of_mass(model: Model, q: np.ndarray) -> np.ndarray:
     """Whole-body centre of mass [m] in the root frame, counting the root's own inertia."""
     import pinocchio as pin
@@ -263,6 +272,7 @@ class State:
     warnings: list[str] = field(default_factory=list)  # not in as_dict: the CLI prints them
     root: str | None = None  # the free-flyer root joint, None for a fixed base
     mimics: dict = field(default_factory=dict)  # joint -> (variable, multiplier, offset)
+    fixed_mass: float = 0.0  # [kg] of ``mass``: the root link's and the links fixed to it
 
     @property
     def lagrangian(self) -> float:
@@ -279,7 +289,7 @@ class State:
             return None if a is None else np.asarray(a).tolist()
 
         return {"joints": self.joints, "q": self.q, "base": "floating" if self.root else "fixed",
-                "total_mass": self.mass,
+                "total_mass": self.mass, "fixed_mass": self.fixed_mass,
                 "com": listed(self.com), "M": listed(self.M), "G": listed(self.G),
                 "C": listed(self.C), "tau": listed(self.tau),
                 "rnea_residual": self.rnea_residual, "kinetic_energy": self.kinetic,
@@ -353,7 +363,8 @@ def _computed(model: Model, q: np.ndarray, q_values: dict, v_values: dict | None
     mass_matrix = np.triu(mass_matrix) + np.triu(mass_matrix, 1).T
     gravity = pin.computeGeneralizedGravity(m, d, q).copy()
     result = State(model.joints, dict(q_values), total_mass(model), centre_of_mass(model, q),
-                   mass_matrix.copy(), gravity, root=model.root, mimics=model.mimics)
+                   mass_matrix.copy(), gravity, root=model.root, mimics=model.mimics,
+                   fixed_mass=fixed_mass(model))
     result.warnings.extend(singular(model, mass_matrix, result.mass))
     if v_values is not None or a_values is not None:
         v = model.velocity(v_values or {})

@@ -63,7 +63,7 @@ def _invalid(properties: MassProperties) -> str | None:
 
 def compare_link(robot, link, density: float | None = None) -> LinkInertia:
     """Declared vs computed for one link; mass kept as declared unless ``density`` is given."""
-    name = link.get("name", "?")
+    name = link.get("name", "")  # (urdfdom's name of a link without one: Robot.links)
     mine = declared(link)
     solid = link_solid(robot, link)
     notes = [message for _, message in solid.problems]
@@ -148,12 +148,16 @@ def _movers(robot) -> dict:
 
 
 def compare(robot, density: float | None = None, links: list[str] | None = None):
-    """Every link (or the named ones) of a robot, in document order; UnknownLink when one of
-    ``links`` does not exist."""
-    UnknownLink.unless_among(links or (), robot.links)
-    chosen = robot.children("link")
-    if links:
-        chosen = [l for l in chosen if l.get("name") in links]
+    """Every link of the robot's tree (or the named ones), in document order: the links the
+    commands that pose it pose, those beside the tree left out as urdfdom drops them
+    (:func:`~urdftool.kinematics.tree.beside_the_tree`); UnknownLink when one of ``links``
+    is not among them."""
+    from urdftool.kinematics.tree import beside_the_tree
+
+    dropped = set(beside_the_tree(robot))
+    tree = {name: link for name, link in robot.links.items() if name not in dropped}
+    UnknownLink.unless_among(links or (), tree)
+    chosen = [link for name, link in tree.items() if not links or name in links]
     return [compare_link(robot, link, density) for link in chosen]
 
 

@@ -50,6 +50,10 @@ def text(result, loads, samples, matrices: bool = True, relevant=()) -> str:
     frame = "the world frame (free base)" if result.root else "the root frame"
     lines = [f"total mass {number(result.mass)} kg, centre of mass "
              f"({numbers(result.com, floor=MILLIMETRE)}) m in {frame}"]
+    if result.fixed_mass > 0:
+        lines.append(f"  (every link counted: {number(result.fixed_mass)} kg of it the root link "
+                     "and the links fixed to it, which Pinocchio's computeTotalMass and "
+                     "centerOfMass leave out)")
     if result.root:
         lines.append(f"free base: the rows {_text(result.root)}.x, .y, .z are the force [N] and "
                      ".roll, .pitch, .yaw the moment [N m] on the root link, in its frame")

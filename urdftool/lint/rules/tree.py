@@ -231,8 +231,10 @@ def multiple_roots(robot):
     """
     found = roots(robot)
     if len(found) > 1 and _all_joints_wired(robot):
-        named = listed(found)
+        named, names = listed(found), robot.names()
         for name in found[1:]:
+            if names[robot.links[name]] is None:
+                continue  # a link without a name (urdfdom's '', a second root): U103 says it
             yield robot.links[name], (f"link '{name}' has no parent joint: the robot has "
                                       f"{len(found)} roots ({named}); connect them with joints")
 
@@ -254,7 +256,8 @@ def kinematic_cycle(robot):
     A loop beside the tree (no link of it reached from a link without a parent joint, while
     one such link exists) urdfdom takes: it builds the tree from that root and drops the
     loop's links silently (check_urdf lists the tree without them); the commands that pose a
-    robot take it too, and pose the tree.
+    robot take it too, and pose the tree, naming the links left out (``inertia`` lists the
+    links they pose).
 
     Bad: ``a -> b`` and ``b -> a``
     Good: a tree: each link reached from the root by exactly one path
