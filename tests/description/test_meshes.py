@@ -842,3 +842,43 @@ def test_a_gltf_scene_nested_deeper_than_a_collada_one_may_be_is_not_opened(tmp_
     with pytest.raises(MeshProblem, match=r"mesh 'd.glb': its scene has 257 nodes nested 257 "
                                           r"deep, over 100000 nodes or 256 deep; not opened"):
         load_mesh(_robot(tmp_path, "d.glb"), "d.glb")
+
+
+def test_a_mesh_trimesh_would_build_from_more_pieces_than_the_bound_is_not_opened(tmp_path):
+    """attack26: trimesh builds a mesh of each primitive each glTF node places and of each
+    material an OBJ names, then joins them: a GLB of 99,000 nodes each placing a triangle took
+    34 s a check; an OBJ of 20,000 ``usemtl`` names 51 s (each piece named by a search over
+    the names before it). One judge of pieces for both, said as U411's too-large, the file
+    never given to trimesh; the bound itself is read."""
+    import json
+    import struct
+
+    from urdftool.description.meshes.counting import MAX_OBJ_MATERIALS, MAX_PIECES
+
+    over = MAX_OBJ_MATERIALS + 1
+    obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n" + "".join(f"usemtl m{i}\nf 1 2 3\n" for i in range(over))
+    (tmp_path / "m.obj").write_text(obj)
+    with pytest.raises(MeshProblem, match=rf"mesh 'm.obj': it names {over} materials \(usemtl\), "
+                                          rf"each a mesh of its own to build and join, over "
+                                          rf"{MAX_OBJ_MATERIALS}; not opened") as refused:
+        load_mesh(_robot(tmp_path, "m.obj"), "m.obj")
+    assert refused.value.kind == "too-large"
+    (tmp_path / "u.obj").write_text(obj.encode("utf-16").decode("latin-1"), encoding="latin-1")
+    with pytest.raises(MeshProblem, match=r"materials \(usemtl\)"):  # NULs between letters
+        load_mesh(_robot(tmp_path, "u.obj"), "u.obj")
+    (tmp_path / "ok.obj").write_text(obj.replace(f"usemtl m{MAX_OBJ_MATERIALS}\n", ""))
+    assert len(load_mesh(_robot(tmp_path, "ok.obj"), "ok.obj").faces) == over
+
+    over = MAX_PIECES + 1
+    header = {"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}] * over,
+              "scenes": [{"nodes": list(range(over))}], "scene": 0,
+              "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}
+    text = json.dumps(header).encode()
+    text += b" " * (-len(text) % 4)
+    glb = b"glTF" + struct.pack("<II", 2, 20 + len(text)) + struct.pack("<I", len(text)) + \
+        b"JSON" + text
+    (tmp_path / "m.glb").write_bytes(glb)
+    with pytest.raises(MeshProblem, match=rf"mesh 'm.glb': its nodes place {over} primitives, "
+                                          rf"each a mesh of its own to build and join, over "
+                                          rf"{MAX_PIECES}; not opened"):
+        load_mesh(_robot(tmp_path, "m.glb"), "m.glb")

@@ -119,12 +119,11 @@ def check_size(path: Path, uri: str, limits: MeshLimits, data: bytes,
                                      "pycollada expands it, Assimp (RViz) and Gazebo expand no "
                                      "entity and read those characters where numbers or "
                                      "names should be; write the text in place")
-    if path.suffix.lower() in (".glb", ".gltf"):
-        from urdftool.description.meshes.counting import gltf_scene_problem
+    from urdftool.description.meshes.counting import scene_problem
 
-        deep = gltf_scene_problem(path, data)
-        if deep:
-            raise MeshProblem("too-large", f"mesh '{uri}': {deep}; not opened")
+    scene = scene_problem(path, data)
+    if scene:
+        raise MeshProblem("too-large", f"mesh '{uri}': {scene}; not opened")
     triangles = triangle_count(path, data) if count else None
     if triangles is not None:
         refuse_too_many(uri, triangles, limits)
