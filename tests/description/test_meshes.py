@@ -882,3 +882,29 @@ def test_a_mesh_trimesh_would_build_from_more_pieces_than_the_bound_is_not_opene
                                           rf"each a mesh of its own to build and join, over "
                                           rf"{MAX_PIECES}; not opened"):
         load_mesh(_robot(tmp_path, "m.glb"), "m.glb")
+
+
+def test_every_command_computing_with_a_mesh_read_assuming_says_so(tmp_path):
+    """attack26: U416 (check) said a glTF node that shears, a mesh whose triangles were left out
+    for not finite vertices, a repaired COLLADA; render, collisions (pose and matrix) and
+    inertia computed with the same mesh in silence. One wording
+    (``meshes.read_as_assumed``), said by each."""
+    from urdftool.collision.geometry import build
+    from urdftool.description.meshes import read_as_assumed
+    from urdftool.kinematics.scene import posed
+    from urdftool.physics.inertia_compare import compare_link
+
+    _glb(tmp_path / "m.glb", matrix=_columns((1, 0.5, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0),
+                                             (0, 0, 0, 1)))
+    (tmp_path / ".git").mkdir(exist_ok=True)
+    (tmp_path / "r.urdf").write_text(
+        '<robot name="r"><link name="a"><visual><geometry><mesh filename="m.glb"/></geometry>'
+        '</visual><collision><geometry><mesh filename="m.glb"/></geometry></collision></link>'
+        '</robot>')
+    robot = load(tmp_path / "r.urdf")
+    said = read_as_assumed(load_mesh(robot, "m.glb").metadata)
+    assert len(said) == 1 and "its matrix shears" in said[0]
+    expected = f"mesh 'm.glb'{said[0]}"
+    assert f"link 'a': {expected}" in posed(robot, {})[0].problems  # render
+    assert build(robot).assumed == [f"link 'a': {expected}"]  # collisions, pose and matrix
+    assert expected in compare_link(robot, robot.links["a"]).notes  # inertia

@@ -315,6 +315,25 @@ def _may_hold_non_finite(data: bytes, suffix: str) -> bool:
     return _NOT_FINITE_SIGN.search(data) is not None
 
 
+def read_as_assumed(metadata: dict) -> list[str]:
+    """What a mesh was read assuming, each said after the mesh's name (``mesh 'm.glb'`` + it):
+    XML repaired (:data:`NOT_WELL_FORMED`), triangles left out for vertices that are not finite
+    (:data:`NOT_FINITE`), a glTF node's transform glTF does not allow (:data:`NODE_TRANSFORM`).
+    The one wording, for ``check`` and for every command that computes with the mesh (render,
+    collisions, inertia), so that none uses such a mesh in silence."""
+    said = []
+    why = metadata.get(NOT_WELL_FORMED)
+    if why:
+        said.append(f" is not well-formed XML ({why}); read as repaired, as assimp reads it, "
+                    "but XML-strict readers (pycollada, trimesh) refuse it")
+    if metadata.get(NOT_FINITE):
+        said.append(f": {metadata[NOT_FINITE]}; checked as trimesh reads it (without them), "
+                    "while renderers and physics engines read them as they are")
+    if metadata.get(NODE_TRANSFORM):
+        said.append(f": {metadata[NODE_TRANSFORM]}")
+    return said
+
+
 def _trimesh_load(data: bytes, file_type: str, process: bool, path: Path, limits: MeshLimits):
     """trimesh's mesh of ``data``, every read of a mesh by trimesh: numpy's warnings on
     vertices not finite or too far (merging them in integers), or on a glTF node's matrix of
