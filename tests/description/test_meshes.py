@@ -848,26 +848,36 @@ def test_a_mesh_trimesh_would_build_from_more_pieces_than_the_bound_is_not_opene
     """attack26: trimesh builds a mesh of each primitive each glTF node places and of each
     material an OBJ names, then joins them: a GLB of 99,000 nodes each placing a triangle took
     34 s a check; an OBJ of 20,000 ``usemtl`` names 51 s (each piece named by a search over
-    the names before it). One judge of pieces for both, said as U411's too-large, the file
+    the names before it); an ASCII STL of 20,000 solids 21 s a load. One judge of pieces for both, said as U411's too-large, the file
     never given to trimesh; the bound itself is read."""
     import json
     import struct
 
-    from urdftool.description.meshes.counting import MAX_OBJ_MATERIALS, MAX_PIECES
+    from urdftool.description.meshes.counting import MAX_TEXT_PIECES, MAX_PIECES
 
-    over = MAX_OBJ_MATERIALS + 1
+    over = MAX_TEXT_PIECES + 1
     obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n" + "".join(f"usemtl m{i}\nf 1 2 3\n" for i in range(over))
     (tmp_path / "m.obj").write_text(obj)
     with pytest.raises(MeshProblem, match=rf"mesh 'm.obj': it names {over} materials \(usemtl\), "
                                           rf"each a mesh of its own to build and join, over "
-                                          rf"{MAX_OBJ_MATERIALS}; not opened") as refused:
+                                          rf"{MAX_TEXT_PIECES}; not opened") as refused:
         load_mesh(_robot(tmp_path, "m.obj"), "m.obj")
     assert refused.value.kind == "too-large"
     (tmp_path / "u.obj").write_text(obj.encode("utf-16").decode("latin-1"), encoding="latin-1")
     with pytest.raises(MeshProblem, match=r"materials \(usemtl\)"):  # NULs between letters
         load_mesh(_robot(tmp_path, "u.obj"), "u.obj")
-    (tmp_path / "ok.obj").write_text(obj.replace(f"usemtl m{MAX_OBJ_MATERIALS}\n", ""))
+    (tmp_path / "ok.obj").write_text(obj.replace(f"usemtl m{MAX_TEXT_PIECES}\n", ""))
     assert len(load_mesh(_robot(tmp_path, "ok.obj"), "ok.obj").faces) == over
+
+    solid = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n" \
+        "endloop\nendfacet\nendsolid s\n"
+    (tmp_path / "m.stl").write_text(solid.upper() * over)
+    with pytest.raises(MeshProblem, match=rf"mesh 'm.stl': it holds {over} solids \(endsolid\), "
+                                          rf"each a mesh of its own to build and join, over "
+                                          rf"{MAX_TEXT_PIECES}; not opened"):
+        load_mesh(_robot(tmp_path, "m.stl"), "m.stl")
+    (tmp_path / "ok.stl").write_text(solid * (over - 1))
+    assert len(load_mesh(_robot(tmp_path, "ok.stl"), "ok.stl").faces) == over - 1
 
     over = MAX_PIECES + 1
     header = {"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}] * over,
