@@ -842,3 +842,79 @@ def test_a_gltf_scene_nested_deeper_than_a_collada_one_may_be_is_not_opened(tmp_
     with pytest.raises(MeshProblem, match=r"mesh 'd.glb': its scene has 257 nodes nested 257 "
                                           r"deep, over 100000 nodes or 256 deep; not opened"):
         load_mesh(_robot(tmp_path, "d.glb"), "d.glb")
+
+
+def test_a_mesh_trimesh_would_build_from_more_pieces_than_the_bound_is_not_opened(tmp_path):
+    """attack26: trimesh builds a mesh of each primitive each glTF node places and of each
+    material an OBJ names, then joins them: a GLB of 99,000 nodes each placing a triangle took
+    34 s a check; an OBJ of 20,000 ``usemtl`` names 51 s (each piece named by a search over
+    the names before it); an ASCII STL of 20,000 solids 21 s a load. One judge of pieces for both, said as U411's too-large, the file
+    never given to trimesh; the bound itself is read."""
+    import json
+    import struct
+
+    from urdftool.description.meshes.counting import MAX_TEXT_PIECES, MAX_PIECES
+
+    over = MAX_TEXT_PIECES + 1
+    obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n" + "".join(f"usemtl m{i}\nf 1 2 3\n" for i in range(over))
+    (tmp_path / "m.obj").write_text(obj)
+    with pytest.raises(MeshProblem, match=rf"mesh 'm.obj': it names {over} materials \(usemtl\), "
+                                          rf"each a mesh of its own to build and join, over "
+                                          rf"{MAX_TEXT_PIECES}; not opened") as refused:
+        load_mesh(_robot(tmp_path, "m.obj"), "m.obj")
+    assert refused.value.kind == "too-large"
+    (tmp_path / "u.obj").write_text(obj.encode("utf-16").decode("latin-1"), encoding="latin-1")
+    with pytest.raises(MeshProblem, match=r"materials \(usemtl\)"):  # NULs between letters
+        load_mesh(_robot(tmp_path, "u.obj"), "u.obj")
+    (tmp_path / "ok.obj").write_text(obj.replace(f"usemtl m{MAX_TEXT_PIECES}\n", ""))
+    assert len(load_mesh(_robot(tmp_path, "ok.obj"), "ok.obj").faces) == over
+
+    solid = "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n" \
+        "endloop\nendfacet\nendsolid s\n"
+    (tmp_path / "m.stl").write_text(solid.upper() * over)
+    with pytest.raises(MeshProblem, match=rf"mesh 'm.stl': it holds {over} solids \(endsolid\), "
+                                          rf"each a mesh of its own to build and join, over "
+                                          rf"{MAX_TEXT_PIECES}; not opened"):
+        load_mesh(_robot(tmp_path, "m.stl"), "m.stl")
+    (tmp_path / "ok.stl").write_text(solid * (over - 1))
+    assert len(load_mesh(_robot(tmp_path, "ok.stl"), "ok.stl").faces) == over - 1
+
+    over = MAX_PIECES + 1
+    header = {"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}] * over,
+              "scenes": [{"nodes": list(range(over))}], "scene": 0,
+              "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}]}
+    text = json.dumps(header).encode()
+    text += b" " * (-len(text) % 4)
+    glb = b"glTF" + struct.pack("<II", 2, 20 + len(text)) + struct.pack("<I", len(text)) + \
+        b"JSON" + text
+    (tmp_path / "m.glb").write_bytes(glb)
+    with pytest.raises(MeshProblem, match=rf"mesh 'm.glb': its nodes place {over} primitives, "
+                                          rf"each a mesh of its own to build and join, over "
+                                          rf"{MAX_PIECES}; not opened"):
+        load_mesh(_robot(tmp_path, "m.glb"), "m.glb")
+
+
+def test_every_command_computing_with_a_mesh_read_assuming_says_so(tmp_path):
+    """attack26: U416 (check) said a glTF node that shears, a mesh whose triangles were left out
+    for not finite vertices, a repaired COLLADA; render, collisions (pose and matrix) and
+    inertia computed with the same mesh in silence. One wording
+    (``meshes.read_as_assumed``), said by each."""
+    from urdftool.collision.geometry import build
+    from urdftool.description.meshes import read_as_assumed
+    from urdftool.kinematics.scene import posed
+    from urdftool.physics.inertia_compare import compare_link
+
+    _glb(tmp_path / "m.glb", matrix=_columns((1, 0.5, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0),
+                                             (0, 0, 0, 1)))
+    (tmp_path / ".git").mkdir(exist_ok=True)
+    (tmp_path / "r.urdf").write_text(
+        '<robot name="r"><link name="a"><visual><geometry><mesh filename="m.glb"/></geometry>'
+        '</visual><collision><geometry><mesh filename="m.glb"/></geometry></collision></link>'
+        '</robot>')
+    robot = load(tmp_path / "r.urdf")
+    said = read_as_assumed(load_mesh(robot, "m.glb").metadata)
+    assert len(said) == 1 and "its matrix shears" in said[0]
+    expected = f"mesh 'm.glb'{said[0]}"
+    assert f"link 'a': {expected}" in posed(robot, {})[0].problems  # render
+    assert build(robot).assumed == [f"link 'a': {expected}"]  # collisions, pose and matrix
+    assert expected in compare_link(robot, robot.links["a"]).notes  # inertia

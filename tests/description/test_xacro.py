@@ -460,3 +460,37 @@ def test_a_failure_on_a_name_the_file_does_not_define_is_said_by_a_flag(tmp_path
         load(path)
     assert raised.value.kind == "xacro" and raised.value.undefined is undefined, \
         raised.value.message
+
+
+def test_macro_calls_one_after_another_expand_in_time_linear_in_their_number(tmp_path):
+    """attack26: xacro replaces each macro call by minidom's ``insertBefore``, which looks the
+    call's place up from the first sibling, and moves its one blank text node after each call
+    the same way: 19,000 flat calls took 20 s, a macro calling itself twice 11 deep (a 300-byte
+    file, 4,096 links) 20 s, both under the macro-call bound. Spliced where the last ended:
+    the same document, and a tenth of the comparisons the square would make."""
+    import xml.dom.minidom
+
+    def expand(calls: int, comment: str = "") -> tuple[list, int]:
+        body = "".join(f'{comment}<xacro:m n="{i}"/>\n' for i in range(calls))
+        (tmp_path / "r.urdf.xacro").write_text(
+            '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+            '<xacro:macro name="m" params="n"><link name="l${n}"/></xacro:macro>\n'
+            f'<link name="base"/>\n{body}</robot>')
+        looked, index = [0], xml.dom.minicompat.NodeList.index
+
+        def counted(self, *args):  # the places looked up, and how far each look went
+            found = index(self, *args)
+            looked[0] += found - (args[1] if len(args) > 1 else 0) + 1
+            return found
+
+        xml.dom.minicompat.NodeList.index = counted
+        try:
+            robot = load(str(tmp_path / "r.urdf.xacro"))
+        finally:
+            xml.dom.minicompat.NodeList.index = index
+        return [link.get("name") for link in robot.root.iter("link")], looked[0]
+
+    for comment in ("", "<!-- c -->"):
+        names, looked = expand(2000, comment)
+        assert names == ["base"] + [f"l{i}" for i in range(2000)]
+        assert looked < 100 * 2000, looked  # the square: over 2 * 10^6

@@ -38,7 +38,18 @@ def test_a_3000_link_chain_is_listed_without_recursion(tmp_path):
     robot = load(str(synthetic_robot(tmp_path, 3000)))
     lines = tree_text(robot).splitlines()
     assert len(lines) == 3 + 2999
-    assert lines[-1] == "    " * 2999 + "child(1):  l2999"
+    assert lines[3 + 63] == "    " * 64 + "child(1):  l64"  # check_urdf's, as deep as robots go
+    assert lines[-1] == "    " * 64 + "[depth 2999] child(1):  l2999"
+
+
+def test_a_deep_chain_is_listed_in_space_that_grows_with_its_links_not_their_square(tmp_path):
+    """A 30,000-link chain (3 MB) was 1.8 GB of indentation: out of memory (U018)."""
+    from conftest import synthetic_robot
+
+    robot = load(str(synthetic_robot(tmp_path, 4000)))
+    listing = tree_text(robot)
+    assert max(map(len, listing.splitlines())) < 4 * 64 + 40
+    assert len(listing) < 4000 * (4 * 64 + 40)
 
 
 def test_a_cycle_below_the_root_is_listed_once(tmp_path):

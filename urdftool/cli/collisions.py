@@ -157,6 +157,7 @@ def _matrix(robot, options, write_srdf, plot, all_pairs, format) -> int:
         check_update(write_srdf)  # before the work, what writing it would refuse
     with sampling_progress(options.samples, machine=format != "text") as on_progress:
         outcome = classify(robot, options, on_progress)
+    warn(outcome.matrix.assumed)
     if write_srdf:
         write_output(write_srdf, updated(outcome.matrix, robot.name, write_srdf),  # an SRDF
                      rewrites=REWRITES)  # updated: meant, of a file read as an SRDF only

@@ -65,6 +65,9 @@ class Geometry:
     parts: dict[str, list[Part]] = field(default_factory=dict)
     visual_only: list[str] = field(default_factory=list)
     problems: list[Problem] = field(default_factory=list)
+    # meshes checked as read under an assumption (description.meshes.read_as_assumed): kept,
+    # and said as warnings, each once
+    assumed: list[str] = field(default_factory=list)
 
     @property
     def links(self) -> list[str]:
@@ -87,7 +90,7 @@ def build(robot) -> Geometry:
         collisions = link.findall("collision")
         parts = []
         for collision in collisions:
-            part = _part(robot, name, collision, meshes, result.problems)
+            part = _part(robot, name, collision, meshes, result.problems, result.assumed)
             if part is not None:
                 parts.append(part)
         if parts:
@@ -97,7 +100,7 @@ def build(robot) -> Geometry:
     return result
 
 
-def _part(robot, link: str, collision, meshes, problems) -> Part | None:
+def _part(robot, link: str, collision, meshes, problems, assumed) -> Part | None:
     where = robot.locate(collision)
     shape = collision.find("geometry")
     # the first element: a comment before it (youBot's base, its box left commented out
@@ -128,7 +131,11 @@ def _part(robot, link: str, collision, meshes, problems) -> Part | None:
         loaded = _load_mesh(robot, shape, meshes)
         if isinstance(loaded, str):
             return _refuse(problems, robot, shape, link, loaded)
-        geometry, center, half, identity, mesh = loaded
+        geometry, center, half, identity, mesh, said = loaded
+        for why in said:
+            note = f"link '{link}': mesh '{shape.get('filename')}'{why}"
+            if note not in assumed:  # (a link's mesh named twice is said once)
+                assumed.append(note)
     else:
         return _refuse(problems, robot, shape, link, f"geometry <{kind}> is not supported")
     origin = transforms.from_origin(read_origin(collision))  # a malformed part counts as 0
@@ -155,14 +162,14 @@ def _refuse(problems, robot, shape, link: str, why: str) -> None:
 
 
 def _load_mesh(robot, shape, cache):
-    """(BVH model, bounding box centre, half extents, digest, (vertices, triangles)) or a
-    message saying why not.
+    """(BVH model, bounding box centre, half extents, digest, (vertices, triangles), what it
+    was read assuming) or a message saying why not.
 
     The mesh itself comes from :mod:`urdftool.description.meshes` (containment, extension whitelist, size
     and triangle limits, COLLADA units, the per-robot cache); only the FCL model is built here,
     once per (file, scale).
     """
-    from urdftool.description.meshes import MeshProblem, load_mesh
+    from urdftool.description.meshes import MeshProblem, load_mesh, read_as_assumed
 
     uri = shape.get("filename")
     if not uri:
@@ -176,7 +183,8 @@ def _load_mesh(robot, shape, cache):
     key = (uri, scale)
     if key not in cache:
         try:
-            cache[key] = _bvh(load_mesh(robot, uri, scale))
+            mesh = load_mesh(robot, uri, scale)
+            cache[key] = (*_bvh(mesh), read_as_assumed(mesh.metadata))
         except MeshProblem as problem:
             cache[key] = str(problem)
     return cache[key]

@@ -75,6 +75,7 @@ class Matrix:
     rounds: list[tuple[int, int]] = field(default_factory=list)
     visual_only: list[str] = field(default_factory=list)
     problems: list = field(default_factory=list)
+    assumed: list[str] = field(default_factory=list)  # Geometry.assumed: meshes read assuming
 
     @property
     def converged(self) -> bool:
@@ -248,7 +249,8 @@ def compute(robot, samples: int = 10000, seed: int = 0, min_fraction: float = 0.
             result.min_distance = distances[i]
         results.append(result)
     return Matrix(results, scene.links, full.samples, seed, margin, min_fraction, unsettled,
-                  rounds, scene.geometry.visual_only, scene.geometry.problems)
+                  rounds, scene.geometry.visual_only, scene.geometry.problems,
+                  scene.geometry.assumed)
 
 
 def _classify(tally: Tally, min_fraction: float, margin: float) -> list[str]:

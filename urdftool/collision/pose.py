@@ -87,7 +87,7 @@ def check_pose(robot, values: dict[str, str], degrees: bool = False,
     srdf = srdf or find_srdf(robot)
     allowed = srdf_module.allowed_pairs(srdf_module.read(srdf)[0]) if srdf else {}
     report = check(scene, chosen.values[0], allowed, srdf=display_path(srdf) if srdf else None)
-    report.warnings = chosen.warnings
+    report.warnings = chosen.warnings + scene.geometry.assumed
     return report
 
 

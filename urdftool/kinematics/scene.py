@@ -105,7 +105,7 @@ class SceneModel:
         """Every ``<mesh>`` of every link, loaded safely and hung from its link's node."""
         import numpy as np
 
-        from urdftool.description.meshes import load_mesh
+        from urdftool.description.meshes import load_mesh, read_as_assumed
         from urdftool.kinematics import transforms
 
         for link in self.urdf.robot.links:
@@ -120,6 +120,8 @@ class SceneModel:
                 except MeshProblem as problem:
                     self.problems.append(f"link '{link.name}': {problem}; not drawn")
                     continue
+                self.problems += [f"link '{link.name}': mesh '{mesh.filename}'{said}"
+                                  for said in read_as_assumed(loaded.metadata)]
                 origin = element.origin if element.origin is not None else np.eye(4)
                 far = transforms.too_far(origin, *loaded.bounds)
                 if far:

@@ -66,7 +66,7 @@ def compare_link(robot, link, density: float | None = None) -> LinkInertia:
     name = link.get("name", "")  # (urdfdom's name of a link without one: Robot.links)
     mine = declared(link)
     solid = link_solid(robot, link)
-    notes = [message for _, message in solid.problems]
+    notes = [message for _, message in solid.problems] + solid.assumed
     if solid.source == "visual":
         notes.append("no collision geometry: computed from the visual geometry")
     from urdftool.physics.mass import problem

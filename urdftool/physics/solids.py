@@ -71,6 +71,13 @@ class LinkSolid:
         return self._build()[1]
 
     @property
+    def assumed(self) -> list[str]:
+        """What its meshes were read assuming (:func:`~urdftool.description.meshes.
+        read_as_assumed`), each after the mesh's name: not problems (the mesh counts as read),
+        said by the commands that compute with them."""
+        return [said for entry in self._entries for said in entry.assumed]
+
+    @property
     def extent(self) -> float:
         """The largest side of ``bounds`` [m] (which it has), worked out once: the inertia rules
         ask up to four times a link."""
@@ -136,6 +143,7 @@ class _Entry:
     problems: list = field(default_factory=list)
     open_mesh: object = None
     local: object = None  # a primitive's unit-density solid in its own frame, until placed
+    assumed: list = field(default_factory=list)  # what its mesh was read assuming
 
 
 def _placed_solid(entry: _Entry):
@@ -257,7 +265,7 @@ def _quietly(compute, *args):
 def _mesh_entry(robot, shape: Shape) -> _Entry:
     """A mesh shape's entry: its solid when closed, else the open mesh (its hull is built only
     when asked), or a problem when it does not resolve or load."""
-    from urdftool.description.meshes import MeshProblem, mesh_facts  # only robots with meshes
+    from urdftool.description.meshes import MeshProblem, mesh_facts, read_as_assumed
 
     entry = _Entry(shape)
     try:
@@ -265,6 +273,8 @@ def _mesh_entry(robot, shape: Shape) -> _Entry:
     except MeshProblem as problem:
         entry.problems.append((shape.element, str(problem)))
         return entry
+    entry.assumed = [f"mesh '{shape.params['filename']}'{said}"
+                     for said in read_as_assumed(mesh.metadata)]
     if mesh.is_watertight:
         _set_solid(entry, mesh)
     else:

@@ -5,6 +5,17 @@ from __future__ import annotations
 from urdftool.kinematics.tree import children_by_link, root_link
 from urdftool.report.escape import text
 
+DEEPEST = 64  # [levels] indented; a deeper line keeps this indentation and says its depth
+
+
+def _indented(depth: int, line: str) -> str:
+    """``line`` indented as check_urdf indents it at ``depth``, to at most :data:`DEEPEST`
+    levels: past them a line says its depth instead (``[depth 3000] child(1):  l2999``), so
+    the listing grows with the links, not with their square (a 30,000-link chain: 1.8 GB)."""
+    if depth <= DEEPEST:
+        return "    " * depth + line
+    return "    " * DEEPEST + f"[depth {depth}] " + line
+
 
 def tree_text(robot) -> str:
     """check_urdf's tree listing; TreeError (urdftool.kinematics.tree) when there is no tree."""
@@ -20,7 +31,7 @@ def tree_text(robot) -> str:
     seen = {root}
     while stack:
         link, index, depth = stack.pop()
-        lines.append("    " * depth + f"child({index}):  {text(link)}")
+        lines.append(_indented(depth, f"child({index}):  {text(link)}"))
         if link in seen:
             continue  # a cycle below the root: listed once, not followed
         seen.add(link)

@@ -18,9 +18,10 @@ from urdftool.description.inputs import MeshLimits
 from urdftool.description.meshes.counting import triangle_count
 from urdftool.description.meshes.measures import MeshFacts, mesh_facts
 from urdftool.description.meshes.reading import NODE_TRANSFORM, NOT_FINITE, NOT_WELL_FORMED, \
-    collada_unit, converted, load_mesh
+    collada_unit, converted, load_mesh, read_as_assumed
 from urdftool.description.meshes.uris import MESH_EXTENSIONS, resolve
 from urdftool.errors import MeshProblem
 
 __all__ = ["MESH_EXTENSIONS", "NODE_TRANSFORM", "NOT_FINITE", "NOT_WELL_FORMED", "MeshFacts", "MeshLimits", "MeshProblem",
-           "collada_unit", "converted", "load_mesh", "mesh_facts", "resolve", "triangle_count"]
+           "collada_unit", "converted", "load_mesh", "mesh_facts", "read_as_assumed", "resolve",
+           "triangle_count"]

@@ -119,12 +119,11 @@ def check_size(path: Path, uri: str, limits: MeshLimits, data: bytes,
                                      "pycollada expands it, Assimp (RViz) and Gazebo expand no "
                                      "entity and read those characters where numbers or "
                                      "names should be; write the text in place")
-    if path.suffix.lower() in (".glb", ".gltf"):
-        from urdftool.description.meshes.counting import gltf_scene_problem
+    from urdftool.description.meshes.counting import scene_problem
 
-        deep = gltf_scene_problem(path, data)
-        if deep:
-            raise MeshProblem("too-large", f"mesh '{uri}': {deep}; not opened")
+    scene = scene_problem(path, data)
+    if scene:
+        raise MeshProblem("too-large", f"mesh '{uri}': {scene}; not opened")
     triangles = triangle_count(path, data) if count else None
     if triangles is not None:
         refuse_too_many(uri, triangles, limits)
@@ -314,6 +313,25 @@ def _may_hold_non_finite(data: bytes, suffix: str) -> bool:
             suffix == ".ply" and b"format binary" in data[:data.find(b"end_header") + 1]):
         return True
     return _NOT_FINITE_SIGN.search(data) is not None
+
+
+def read_as_assumed(metadata: dict) -> list[str]:
+    """What a mesh was read assuming, each said after the mesh's name (``mesh 'm.glb'`` + it):
+    XML repaired (:data:`NOT_WELL_FORMED`), triangles left out for vertices that are not finite
+    (:data:`NOT_FINITE`), a glTF node's transform glTF does not allow (:data:`NODE_TRANSFORM`).
+    The one wording, for ``check`` and for every command that computes with the mesh (render,
+    collisions, inertia), so that none uses such a mesh in silence."""
+    said = []
+    why = metadata.get(NOT_WELL_FORMED)
+    if why:
+        said.append(f" is not well-formed XML ({why}); read as repaired, as assimp reads it, "
+                    "but XML-strict readers (pycollada, trimesh) refuse it")
+    if metadata.get(NOT_FINITE):
+        said.append(f": {metadata[NOT_FINITE]}; checked as trimesh reads it (without them), "
+                    "while renderers and physics engines read them as they are")
+    if metadata.get(NODE_TRANSFORM):
+        said.append(f": {metadata[NODE_TRANSFORM]}")
+    return said
 
 
 def _trimesh_load(data: bytes, file_type: str, process: bool, path: Path, limits: MeshLimits):

@@ -704,18 +704,8 @@ def mesh_not_well_formed(robot):
     outcomes = _mesh_outcomes(robot)
     if not outcomes:
         return  # (no mesh: the mesh readers are not imported)
-    from urdftool.description.meshes import NODE_TRANSFORM, NOT_FINITE, NOT_WELL_FORMED
+    from urdftool.description.meshes import read_as_assumed
 
     for link, holder, shape, outcome in outcomes:
-        metadata = getattr(outcome, "metadata", {})
-        why = metadata.get(NOT_WELL_FORMED)
-        if why:
-            yield shape, (f"{_mesh_named(robot, link, holder, shape)} is not well-formed XML "
-                          f"({why}); read as repaired, as assimp reads it, but XML-strict readers "
-                          "(pycollada, trimesh) refuse it")
-        if metadata.get(NOT_FINITE):
-            yield shape, (f"{_mesh_named(robot, link, holder, shape)}: {metadata[NOT_FINITE]}; "
-                          "checked as trimesh reads it (without them), while renderers and "
-                          "physics engines read them as they are")
-        if metadata.get(NODE_TRANSFORM):
-            yield shape, f"{_mesh_named(robot, link, holder, shape)}: {metadata[NODE_TRANSFORM]}"
+        for said in read_as_assumed(getattr(outcome, "metadata", {})):
+            yield shape, f"{_mesh_named(robot, link, holder, shape)}{said}"
