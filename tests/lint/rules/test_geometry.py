@@ -135,6 +135,39 @@ def test_a_mesh_missing_from_a_folder_kept_empty_is_not_certainly_missing(tmp_pa
     assert severity == Severity.ERROR and "kept empty" not in message, message
 
 
+def test_a_mesh_the_repositorys_gitignore_ignores_is_not_certainly_missing(tmp_path):
+    """robustify/audibot keeps its meshes in meshes/meshes.tar.xz, which its CMakeLists.txt
+    unpacks at build time, and ignores ``*.dae`` and ``*.stl``; K-Scale's sim ignores
+    ``*meshes*``, filled by its tools' downloads: every mesh was a U408 error, though the
+    repository says it keeps them out of git on purpose. A warning naming the .gitignore and
+    its pattern; a pattern of another file, a ``!`` pattern taking the file back, or an
+    anchored pattern of another folder keep the error."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    (tmp_path / "CMakeLists.txt").write_text("install(DIRECTORY meshes DESTINATION share/bot)\n")
+    _stl(tmp_path / "meshes" / "other.stl")
+    uri = "package://bot/meshes/base.dae"
+
+    def u408():
+        [found] = _u407(tmp_path / "robot.urdf", uri, "U408")
+        return found
+
+    assert u408()[0] == Severity.ERROR
+    for pattern in ("*.dae", "*meshes*", "meshes/", "/meshes/base.dae", "**/base.dae"):
+        (tmp_path / ".gitignore").write_text(f"# build output\n*.o\n{pattern}\n")
+        severity, message = u408()
+        assert severity == Severity.WARNING, (pattern, message)
+        assert f".gitignore ignores it ('{pattern}')" in message, message
+    for pattern in ("*.stl", "/base.dae", "other/", "*.dae\n!base.dae"):
+        (tmp_path / ".gitignore").write_text(pattern + "\n")
+        assert u408()[0] == Severity.ERROR, pattern
+    (tmp_path / ".gitignore").unlink()
+    (tmp_path / "meshes" / ".gitignore").write_text("*.dae\n")  # one below the root
+    assert u408()[0] == Severity.WARNING
+
+
 def test_a_mesh_named_with_the_words_of_a_note_is_judged_by_what_was_found(tmp_path):
     """A package the package.xml declares and a folder kept empty travel with the mesh's
     problem (``MeshProblem.declared``, ``kept_empty``), set where they are found; they were

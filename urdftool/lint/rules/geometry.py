@@ -427,6 +427,9 @@ def mesh_not_found(robot):
     ``.keep``, ``.gitignore``): a folder kept empty in the repository for files a tool, a
     download or a build step puts there (Stretch's ``meshes/``, filled from a robot's
     calibration batch): the workspace's question, as U407's package a package.xml declares.
+    A **warning** for a file the repository's ``.gitignore`` ignores (audibot's meshes, which
+    its CMakeLists.txt unpacks from an archive; K-Scale's, which its tools download): no clone
+    has it, and the message names the pattern; it is there only where something puts it.
 
     The message names where the repository has the file: beside it in other capitals, or,
     when the folder it was looked for in holds no mesh at all (the folder is wrong, not the
