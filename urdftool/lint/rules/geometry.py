@@ -180,9 +180,11 @@ def non_positive_dimension(robot):
     A negative mesh scale mirrors the mesh and is allowed; a zero scale is not. A ``<visual>``
     whose every dimension is zero (``<box size="0 0 0"/>``, ``<sphere radius="0"/>``) is an
     invisible marker of a virtual link, drawn as nothing and never collided with: not reported.
+    A ``<collision>`` ``<sphere radius="0"/>`` is a **warning**: a point, which Drake reads as
+    a contact point (its ``Sphere(0)`` is a documented special case; Drake's Atlas and Jaco
+    models place their feet's and fingers' contacts so), and other checkers as no volume.
 
-    Bad: ``<box size="0.1 0 0.3"/>``, ``<sphere radius="-0.02"/>``, ``scale="1 0 1"``, a
-    ``<collision>`` with ``<sphere radius="0"/>``
+    Bad: ``<box size="0.1 0 0.3"/>``, ``<sphere radius="-0.02"/>``, ``scale="1 0 1"``
     Good: ``<box size="0.1 0.01 0.3"/>``, ``<sphere radius="0.02"/>``
     """
     positive: set = set()  # (attribute, count, text) found all positive (values repeat)
@@ -200,6 +202,13 @@ def non_positive_dimension(robot):
         if holder.tag == "visual" and kind != "mesh" and all(
                 values and all(v == 0 for v in values) for values in numbers):
             continue  # a virtual link's invisible marker
+        if kind == "sphere" and holder.tag == "collision" and numbers == [(0.0,)]:
+            yield shape, (f"link '{link.get('name')}': <collision> <sphere radius="
+                          f"\"{shape.get('radius')}\"> is a point: Drake reads it as a contact "
+                          "point (its models' feet and fingertips), but it has no volume, "
+                          "and other simulators and collision checkers may touch nothing with "
+                          "it; give it a radius if it is not for Drake"), None, Severity.WARNING
+            continue
         for (attribute, _), values in zip(fields, numbers):
             mirrored = attribute == "scale" and all(v != 0 for v in values or [0])
             if values and finite(values) and any(v <= 0 for v in values) and not mirrored:
