@@ -629,3 +629,27 @@ def test_u416_says_a_gltf_node_that_shears_and_what_urdftool_assumed(tmp_path):
     assert found, [f.message for f in findings]
     assert "glTF node 'n': its matrix shears" in findings[0].message
     assert "apply it as it is, and so does urdftool" in findings[0].message
+
+
+def test_a_material_defined_by_a_later_visual_is_said_to_be_used_before_it(tmp_path):
+    """cangozpi's forklift draws its wheels 'blue' before the lift's visual defines 'blue': the
+    message said "'blue' is not defined; available materials: green, red, white", which a
+    reader with the definition in view takes for wrong. It names the later definition."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    path = tmp_path / "robot.urdf"
+    path.write_text('<robot name="r">'
+                    '<link name="wheel"><visual><geometry><box size="1 1 1"/></geometry>'
+                    '<material name="blue"/></visual></link>'
+                    '<link name="lift"><visual><geometry><box size="1 1 1"/></geometry>'
+                    '<material name="blue"><color rgba="0 0 1 1"/></material></visual></link>'
+                    '<link name="caster"><visual><geometry><box size="1 1 1"/></geometry>'
+                    '<material name="black"/></visual></link>'
+                    '<joint name="a" type="fixed"><parent link="wheel"/><child link="lift"/>'
+                    '</joint><joint name="b" type="fixed"><parent link="wheel"/>'
+                    '<child link="caster"/></joint></robot>')
+    found = sorted(f.message for f in load_and_check(str(path), CheckOptions()).findings
+                   if f.code == "U406")
+    assert len(found) == 2, found
+    assert "'black' is not defined; available materials: blue" in found[0], found
+    assert "'blue' is used before it is defined (link 'lift', later" in found[1], found

@@ -307,7 +307,8 @@ def undefined_material(robot):
     """A visual names a material that is defined nowhere, so it renders without colour.
 
     urdfdom warns ``material 'x' undefined``. A name-only reference must match a top-level
-    ``<material>`` or an earlier visual's material that has a colour or texture. An empty name
+    ``<material>`` or an earlier visual's material that has a colour or texture (a later
+    visual's definition is named: the order is urdfdom's). An empty name
     (``<material name=""/>``) refers to nothing: urdfdom looks up only names it is given
     (``material_name.length() > 0``, model.cpp), and the visual is drawn in the default colour,
     as without the element.
@@ -316,17 +317,28 @@ def undefined_material(robot):
     Good: ``<material name="green"/>`` after ``<material name="green"><color .../></material>``
     """
     defined = {m.get("name") for m in robot.children("material") if _defines(m)}
-    for link, holder in _holders(robot, ("visual",)):
-        for material in robot.grouped(holder).get("material", ()):
-            name = material.get("name")
-            if not name:
-                continue
-            if _defines(material):
-                defined.add(name)
-            elif name not in defined:
-                from urdftool.errors import available
-                yield material, (f"link '{link.get('name')}': material '{name}' is not defined; "
-                                 + available('materials', name, defined))
+    used = [(link, material) for link, holder in _holders(robot, ("visual",))
+            for material in robot.grouped(holder).get("material", ()) if material.get("name")]
+    later: dict[str, str] = {}  # a name a visual defines -> the link of its last definition
+    for link, material in reversed(used):
+        if _defines(material):
+            later[material.get("name")] = link.get("name")
+    for index, (link, material) in enumerate(used):
+        name = material.get("name")
+        if _defines(material):
+            defined.add(name)
+        elif name not in defined:
+            from urdftool.errors import available
+            definer = next((other.get("name") for other, element in used[index + 1:]
+                            if element.get("name") == name and _defines(element)), None) \
+                if name in later else None
+            if definer is not None:  # (a name defined later, in the order urdfdom reads)
+                yield material, (f"link '{link.get('name')}': material '{name}' is used before "
+                                 f"it is defined (link '{definer}', later, defines it; urdfdom "
+                                 "reads materials in order, so this visual has no colour)")
+            else:
+                yield material, (f"link '{link.get('name')}': material '{name}' is not "
+                                 "defined; " + available('materials', name, defined))
 
 
 # Meshes ------------------------------------------------------------------------------------
