@@ -442,3 +442,23 @@ def test_text_before_the_declaration_is_said_at_its_line_whatever_ends_lines(tmp
     blanked, line = _late_declaration(data)
     assert line == 4
     assert blanked.count(end.encode()) == data.count(end.encode()) and len(blanked) == len(data)
+
+
+def test_what_a_xacro_prints_with_xacro_message_is_not_a_warning(tmp_path):
+    """jhu-dvrk/dvrk_model's instrument macro prints which instrument it builds with
+    ``xacro.message('Using instrument ...')``: U010 said "xacro printed a warning" of each
+    ("Using instrument 400006: Large Needle Driver"). xacro.message() writes its author's words,
+    xacro.warning() writes "warning: " before them (stderr being no terminal): only the latter
+    is a warning."""
+    ns = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
+    path = write(tmp_path, "r.urdf.xacro",
+                 f'<robot name="r" {ns}>\n<link name="a"/>\n'
+                 "<xacro:if value=\"${xacro.message('Using instrument 400006') or True}\">"
+                 '<link name="b"/></xacro:if>\n'
+                 "<xacro:if value=\"${xacro.warning('careful') or True}\">"
+                 '<link name="c"/></xacro:if>\n'
+                 '<joint name="j" type="fixed"><parent link="a"/><child link="b"/></joint>\n'
+                 '<joint name="k" type="fixed"><parent link="a"/><child link="c"/></joint>\n'
+                 '</robot>')
+    notes = {(n.kind, n.message) for n in load(path).notes}
+    assert notes == {("xacro-warning", "careful")}, notes

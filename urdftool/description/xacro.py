@@ -1350,7 +1350,10 @@ def _written_use(session: _Session, where: Location, message: str) -> Location:
 def _warnings(text: str, top: str, places: dict | None = None) -> list[tuple[Location, str]]:
     """xacro's warnings (written to stderr) as (location, message) pairs: at the element the
     expansion was at when xacro wrote the warning (``places``, offset -> Location), else in
-    the file xacro's context lines name, without a line."""
+    the file xacro's context lines name, without a line. Only what xacro says is a warning
+    (or an error): ``xacro.warning()`` writes "warning: " before it when stderr is no
+    terminal; ``xacro.message()`` writes the author's own words without it (dvrk_model's
+    "Using instrument 400006: Large Needle Driver"), which are not a warning."""
     found = []
     current: list[str] = []
     where, at = top, None
@@ -1368,6 +1371,8 @@ def _warnings(text: str, top: str, places: dict | None = None) -> list[tuple[Loc
         if current:
             found.append((at or Location(where, None), " ".join(current)))
             current = []
+        if not line.lower().startswith(("warning:", "error:")):
+            continue  # xacro.message() (<xacro:message>): what its author prints, no warning
         # the place of the write that began this line: the last one at or before it
         at = next((place for mark, place in reversed(marks) if mark <= start), None) \
             if marks else None

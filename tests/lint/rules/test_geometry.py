@@ -135,6 +135,39 @@ def test_a_mesh_missing_from_a_folder_kept_empty_is_not_certainly_missing(tmp_pa
     assert severity == Severity.ERROR and "kept empty" not in message, message
 
 
+def test_a_mesh_the_repositorys_gitignore_ignores_is_not_certainly_missing(tmp_path):
+    """robustify/audibot keeps its meshes in meshes/meshes.tar.xz, which its CMakeLists.txt
+    unpacks at build time, and ignores ``*.dae`` and ``*.stl``; K-Scale's sim ignores
+    ``*meshes*``, filled by its tools' downloads: every mesh was a U408 error, though the
+    repository says it keeps them out of git on purpose. A warning naming the .gitignore and
+    its pattern; a pattern of another file, a ``!`` pattern taking the file back, or an
+    anchored pattern of another folder keep the error."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    (tmp_path / "CMakeLists.txt").write_text("install(DIRECTORY meshes DESTINATION share/bot)\n")
+    _stl(tmp_path / "meshes" / "other.stl")
+    uri = "package://bot/meshes/base.dae"
+
+    def u408():
+        [found] = _u407(tmp_path / "robot.urdf", uri, "U408")
+        return found
+
+    assert u408()[0] == Severity.ERROR
+    for pattern in ("*.dae", "*meshes*", "meshes/", "/meshes/base.dae", "**/base.dae"):
+        (tmp_path / ".gitignore").write_text(f"# build output\n*.o\n{pattern}\n")
+        severity, message = u408()
+        assert severity == Severity.WARNING, (pattern, message)
+        assert f".gitignore ignores it ('{pattern}')" in message, message
+    for pattern in ("*.stl", "/base.dae", "other/", "*.dae\n!base.dae"):
+        (tmp_path / ".gitignore").write_text(pattern + "\n")
+        assert u408()[0] == Severity.ERROR, pattern
+    (tmp_path / ".gitignore").unlink()
+    (tmp_path / "meshes" / ".gitignore").write_text("*.dae\n")  # one below the root
+    assert u408()[0] == Severity.WARNING
+
+
 def test_a_mesh_named_with_the_words_of_a_note_is_judged_by_what_was_found(tmp_path):
     """A package the package.xml declares and a folder kept empty travel with the mesh's
     problem (``MeshProblem.declared``, ``kept_empty``), set where they are found; they were
@@ -596,3 +629,27 @@ def test_u416_says_a_gltf_node_that_shears_and_what_urdftool_assumed(tmp_path):
     assert found, [f.message for f in findings]
     assert "glTF node 'n': its matrix shears" in findings[0].message
     assert "apply it as it is, and so does urdftool" in findings[0].message
+
+
+def test_a_material_defined_by_a_later_visual_is_said_to_be_used_before_it(tmp_path):
+    """cangozpi's forklift draws its wheels 'blue' before the lift's visual defines 'blue': the
+    message said "'blue' is not defined; available materials: green, red, white", which a
+    reader with the definition in view takes for wrong. It names the later definition."""
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    path = tmp_path / "robot.urdf"
+    path.write_text('<robot name="r">'
+                    '<link name="wheel"><visual><geometry><box size="1 1 1"/></geometry>'
+                    '<material name="blue"/></visual></link>'
+                    '<link name="lift"><visual><geometry><box size="1 1 1"/></geometry>'
+                    '<material name="blue"><color rgba="0 0 1 1"/></material></visual></link>'
+                    '<link name="caster"><visual><geometry><box size="1 1 1"/></geometry>'
+                    '<material name="black"/></visual></link>'
+                    '<joint name="a" type="fixed"><parent link="wheel"/><child link="lift"/>'
+                    '</joint><joint name="b" type="fixed"><parent link="wheel"/>'
+                    '<child link="caster"/></joint></robot>')
+    found = sorted(f.message for f in load_and_check(str(path), CheckOptions()).findings
+                   if f.code == "U406")
+    assert len(found) == 2, found
+    assert "'black' is not defined; available materials: blue" in found[0], found
+    assert "'blue' is used before it is defined (link 'lift', later" in found[1], found

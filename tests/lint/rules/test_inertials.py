@@ -934,3 +934,17 @@ def test_u312_gathers_a_members_body_only_when_its_own_geometry_does_not_hold_th
     gathered.clear()
     assert [message for _, message, *_ in inertials.com_outside_hull(load(path))] == first
     assert len(gathered) == links  # (every member of the body with mass: all but the last)
+
+
+@pytest.mark.parametrize("size, tensor, swapped", [
+    ("0.4 0.05 0.05", "0.0135 0.0135 0.00042", "(ixx and izz swapped?)"),  # a bar along x
+    ("0.05 0.4 0.05", "0.0135 0.0135 0.00042", "(iyy and izz swapped?)"),  # along y
+    ("0.05 0.05 0.4", "0.00042 0.0135 0.0135", "(ixx and izz swapped?)"),  # along z
+])
+def test_principal_moments_order_names_the_moments_swapped(tmp_path, size, tensor, swapped):
+    """Han's Elfin 5's link 4 turns easiest about z and hardest about y, its iyy the least:
+    the message said "(ixx and izz swapped?)" whatever the axes; it names the two moments
+    about the link's axes nearest the geometry's easiest and hardest."""
+    _, findings = check_folder(tmp_path, {"robot.urdf": _bar(tensor, size)}, select=("U314",))
+    [finding] = findings
+    assert finding.message.endswith("written for other axes " + swapped), finding.message

@@ -12,13 +12,15 @@ A URI is resolved and checked once per robot, a path once per run.
 
 from __future__ import annotations
 
+import fnmatch
 import os
 import re
 from dataclasses import replace
 from pathlib import Path
 
 from urdftool.description.files import (MANIFESTS_SAID, inside, kind_of, listing,
-                                        no_file_there, real_inside, real_path, resolved, walk)
+                                        no_file_there, read_regular, real_inside, real_path,
+                                        resolved, walk)
 from urdftool.description.packages import (containment_root, declaring_package, installed,
                                           package_name, package_of, package_uri_parts,
                                           written_from_above)
@@ -337,6 +339,11 @@ def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | 
     hint = "" if windows else _elsewhere(_real(Path(path)), base)
     if located.doubt:  # (said "not found in the source tree": _checked)
         return MeshProblem("missing", f"{said}; {located.doubt}{hint}", certain=False)
+    ignored = _git_ignored(path)
+    if ignored:
+        return MeshProblem("missing", f"{said}{hint}: not certain: {ignored}, so no clone has "
+                                      "it: it is there only where a build step, a download or "
+                                      "a tool puts it", certain=False)
     kept = _kept_empty(os.path.dirname(path))
     if kept:
         return MeshProblem("missing", f"{said}{hint}: not certain: its folder holds only "
@@ -345,6 +352,64 @@ def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | 
                                       "per-robot calibration fills it)", certain=False,
                            kept_empty=True)
     return replace(found, message=said + hint) if windows or hint else found
+
+
+def _git_ignored(path: str) -> str:
+    """Which ``.gitignore`` of the repository ignores the file ``path`` (a mesh missing from
+    the source tree), said as "its .gitignore FILE ignores it ('PATTERN')"; "" when none does.
+    The repository keeps such a file out of git on purpose: audibot's meshes, unpacked from
+    meshes.tar.xz by its CMakeLists.txt (``*.dae``, ``*.stl``), K-Scale's robots, whose
+    meshes their tools download (``*meshes*``). Read from the file's folder up to the
+    repository's root, as git reads them: a pattern without ``/`` matches a name at any depth,
+    one with ``/`` a path from its .gitignore's folder, one ending in ``/`` a folder; a
+    ``!`` pattern matching the file makes the answer "" (not said)."""
+    root = os.fspath(containment_root(Path(os.path.dirname(path))))
+    folder, found = os.path.dirname(path), ""
+    while folder == root or folder.startswith(root.rstrip(os.sep) + os.sep):
+        relative = os.path.relpath(path, folder).replace(os.sep, "/")
+        for pattern in _ignore_patterns(os.path.join(folder, ".gitignore")):
+            negated = pattern.startswith("!")
+            if _ignores(pattern.removeprefix("!"), relative):
+                if negated:
+                    return ""
+                found = found or (f"the repository's "
+                                  f"{os.path.relpath(os.path.join(folder, '.gitignore'), root)}"
+                                  f" ignores it ('{pattern}')")
+        if folder == root:
+            break
+        folder = os.path.dirname(folder)
+    return found
+
+
+def _ignore_patterns(name: str) -> list[str]:
+    """The patterns of the .gitignore ``name`` (none when it is no file)."""
+    if kind_of(name) != "file":
+        return []
+    try:
+        text = read_regular(name, 1 << 20).decode("utf-8", "replace")
+    except OSError:
+        return []
+    lines = (line.rstrip() for line in text.splitlines())
+    return [line for line in lines if line and not line.startswith("#")]
+
+
+def _ignores(pattern: str, relative: str) -> bool:
+    """Whether gitignore ``pattern`` matches the file ``relative`` (to the .gitignore's
+    folder, with ``/``) or a folder above it."""
+    folders_only = pattern.endswith("/")
+    pattern = pattern.rstrip("/")
+    pattern = pattern.removeprefix("**/")  # at any depth, as a pattern without "/" is
+    anchored = "/" in pattern
+    pattern = pattern.removeprefix("/")
+    parts = relative.split("/")
+    # the file itself (not for a folder pattern), then each folder above it
+    candidates = [] if folders_only else [relative]
+    candidates += ["/".join(parts[:end]) for end in range(1, len(parts))]
+    for candidate in candidates:
+        subject = candidate if anchored else candidate.rsplit("/", 1)[-1]
+        if fnmatch.fnmatchcase(subject, pattern):
+            return True
+    return False
 
 
 _PLACEHOLDERS = (".gitkeep", ".keep", ".gitignore", ".placeholder", ".empty")

@@ -180,9 +180,11 @@ def non_positive_dimension(robot):
     A negative mesh scale mirrors the mesh and is allowed; a zero scale is not. A ``<visual>``
     whose every dimension is zero (``<box size="0 0 0"/>``, ``<sphere radius="0"/>``) is an
     invisible marker of a virtual link, drawn as nothing and never collided with: not reported.
+    A ``<collision>`` ``<sphere radius="0"/>`` is a **warning**: a point, which Drake reads as
+    a contact point (its ``Sphere(0)`` is a documented special case; Drake's Atlas and Jaco
+    models place their feet's and fingers' contacts so), and other checkers as no volume.
 
-    Bad: ``<box size="0.1 0 0.3"/>``, ``<sphere radius="-0.02"/>``, ``scale="1 0 1"``, a
-    ``<collision>`` with ``<sphere radius="0"/>``
+    Bad: ``<box size="0.1 0 0.3"/>``, ``<sphere radius="-0.02"/>``, ``scale="1 0 1"``
     Good: ``<box size="0.1 0.01 0.3"/>``, ``<sphere radius="0.02"/>``
     """
     positive: set = set()  # (attribute, count, text) found all positive (values repeat)
@@ -200,6 +202,13 @@ def non_positive_dimension(robot):
         if holder.tag == "visual" and kind != "mesh" and all(
                 values and all(v == 0 for v in values) for values in numbers):
             continue  # a virtual link's invisible marker
+        if kind == "sphere" and holder.tag == "collision" and numbers == [(0.0,)]:
+            yield shape, (f"link '{link.get('name')}': <collision> <sphere radius="
+                          f"\"{shape.get('radius')}\"> is a point: Drake reads it as a contact "
+                          "point (its models' feet and fingertips), but it has no volume, "
+                          "and other simulators and collision checkers may touch nothing with "
+                          "it; give it a radius if it is not for Drake"), None, Severity.WARNING
+            continue
         for (attribute, _), values in zip(fields, numbers):
             mirrored = attribute == "scale" and all(v != 0 for v in values or [0])
             if values and finite(values) and any(v <= 0 for v in values) and not mirrored:
@@ -298,7 +307,8 @@ def undefined_material(robot):
     """A visual names a material that is defined nowhere, so it renders without colour.
 
     urdfdom warns ``material 'x' undefined``. A name-only reference must match a top-level
-    ``<material>`` or an earlier visual's material that has a colour or texture. An empty name
+    ``<material>`` or an earlier visual's material that has a colour or texture (a later
+    visual's definition is named: the order is urdfdom's). An empty name
     (``<material name=""/>``) refers to nothing: urdfdom looks up only names it is given
     (``material_name.length() > 0``, model.cpp), and the visual is drawn in the default colour,
     as without the element.
@@ -307,17 +317,28 @@ def undefined_material(robot):
     Good: ``<material name="green"/>`` after ``<material name="green"><color .../></material>``
     """
     defined = {m.get("name") for m in robot.children("material") if _defines(m)}
-    for link, holder in _holders(robot, ("visual",)):
-        for material in robot.grouped(holder).get("material", ()):
-            name = material.get("name")
-            if not name:
-                continue
-            if _defines(material):
-                defined.add(name)
-            elif name not in defined:
-                from urdftool.errors import available
-                yield material, (f"link '{link.get('name')}': material '{name}' is not defined; "
-                                 + available('materials', name, defined))
+    used = [(link, material) for link, holder in _holders(robot, ("visual",))
+            for material in robot.grouped(holder).get("material", ()) if material.get("name")]
+    later: dict[str, str] = {}  # a name a visual defines -> the link of its last definition
+    for link, material in reversed(used):
+        if _defines(material):
+            later[material.get("name")] = link.get("name")
+    for index, (link, material) in enumerate(used):
+        name = material.get("name")
+        if _defines(material):
+            defined.add(name)
+        elif name not in defined:
+            from urdftool.errors import available
+            definer = next((other.get("name") for other, element in used[index + 1:]
+                            if element.get("name") == name and _defines(element)), None) \
+                if name in later else None
+            if definer is not None:  # (a name defined later, in the order urdfdom reads)
+                yield material, (f"link '{link.get('name')}': material '{name}' is used before "
+                                 f"it is defined (link '{definer}', later, defines it; urdfdom "
+                                 "reads materials in order, so this visual has no colour)")
+            else:
+                yield material, (f"link '{link.get('name')}': material '{name}' is not "
+                                 "defined; " + available('materials', name, defined))
 
 
 # Meshes ------------------------------------------------------------------------------------
@@ -427,6 +448,9 @@ def mesh_not_found(robot):
     ``.keep``, ``.gitignore``): a folder kept empty in the repository for files a tool, a
     download or a build step puts there (Stretch's ``meshes/``, filled from a robot's
     calibration batch): the workspace's question, as U407's package a package.xml declares.
+    A **warning** for a file the repository's ``.gitignore`` ignores (audibot's meshes, which
+    its CMakeLists.txt unpacks from an archive; K-Scale's, which its tools download): no clone
+    has it, and the message names the pattern; it is there only where something puts it.
 
     The message names where the repository has the file: beside it in other capitals, or,
     when the folder it was looked for in holds no mesh at all (the folder is wrong, not the

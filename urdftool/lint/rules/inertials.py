@@ -1307,7 +1307,7 @@ ORDER_SLACK = 2.0  # the declared moments must be reversed by this much: a heavy
 
 @rule("U314", "principal-moments-order", Severity.WARNING)
 def principal_moments_order(robot):
-    """A link's declared moments of inertia are ordered against its geometry's (ixx and izz swapped).
+    """A link's declared moments of inertia are ordered against its geometry's (two swapped).
 
     A long or flat body turns hardest about the axes across its length and easiest about its
     long axis, whatever its density: the ordering of its moments follows its shape (for a
@@ -1351,7 +1351,18 @@ def principal_moments_order(robot):
                 f"({_axis_text(easy)}) and hardest about ({_axis_text(hard)}) (moments "
                 f"{number(easiest, 3)} and {number(hardest, 3)} kg m^2 as a uniform solid), but the declared "
                 f"tensor has {number(about_easy, 3)} and {number(about_hard, 3)} about them: moments "
-                "written for other axes (ixx and izz swapped?)"))
+                f"written for other axes{_swapped(easy, hard)}"))
+
+
+def _swapped(easy, hard) -> str:
+    """' (iyy and izz swapped?)': the moments about the link's axes nearest the geometry's
+    easiest and hardest axes, when those are two of the link's axes ("" otherwise: the
+    geometry's axes lie between them)."""
+    nearest = [max(range(3), key=lambda i: abs(axis[i])) for axis in (easy, hard)]
+    if nearest[0] == nearest[1] or min(abs(easy[nearest[0]]), abs(hard[nearest[1]])) < 0.9:
+        return ""
+    first, second = sorted(nearest)
+    return f" (i{'xyz'[first] * 2} and i{'xyz'[second] * 2} swapped?)"
 
 
 def _axis_text(v) -> str:

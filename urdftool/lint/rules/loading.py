@@ -404,7 +404,9 @@ U010 = declare("U010", "xacro-warning", Severity.WARNING, """
     xacro printed a warning while expanding the file.
 
     xacro warns about unknown attributes on its own tags, deprecated syntax and includes whose
-    glob matched nothing; these are usually typos that change the result silently.
+    glob matched nothing; these are usually typos that change the result silently. What a
+    file prints with ``xacro.message()`` or ``<xacro:message>`` (its author's information,
+    written without xacro's "warning: ") is no warning.
 
     Bad: ``<xacro:include filename="parts/*.xacro"/>`` matching no file
     Good: a pattern that matches the files meant
