@@ -131,6 +131,43 @@ def test_declared_keeps_an_unturned_tensor_as_rotate_gives_it_back():
         assert struct.pack("<9d", *sum(found, ())) == struct.pack("<9d", *sum(turned, ())), terms
 
 
+def test_a_declared_inertial_gives_no_body_exactly_when_it_is_malformed_or_past_the_bounds():
+    """declared() and problem_at() judge the bounds alike (one statement of them): an inertial
+    whose numbers all parse as finite gives no body exactly when problem_at says why, and
+    problem_at says nothing of one that gives a body or does not parse as finite numbers."""
+    import math
+    import random
+
+    from lxml import etree
+
+    from urdftool.physics import mass
+
+    values = ["0", "1", "-0.0", "2e51", "-2.2e51", "1e30", "-1.1e30", "4e10", "-5e10", "inf",
+              "nan", "x"]
+    chance = random.Random(26)
+    for _ in range(3000):
+        m, *terms = (chance.choice(values) for _ in range(7))
+        xyz = " ".join(chance.choice(values) for _ in range(3))
+        rpy = chance.choice(["0 0 0", "0.5 0 nan", "inf 0 0", "1 2"])
+        origin = chance.choice([f'<origin xyz="{xyz}" rpy="{rpy}"/>', f'<origin xyz="{xyz}"/>',
+                                ""])
+        link = etree.fromstring(
+            f'<link name="l"><inertial>{origin}<mass value="{m}"/><inertia ixx="{terms[0]}" '
+            f'ixy="{terms[1]}" ixz="{terms[2]}" iyy="{terms[3]}" iyz="{terms[4]}" '
+            f'izz="{terms[5]}"/></inertial></link>')
+        body, found = mass.declared(link), mass.problem_at(link)
+        numbers = [m, *terms] + ((xyz.split() + rpy.split()) if "rpy" in origin else
+                                 xyz.split() if origin else [])
+        finite = all(v != "x" and math.isfinite(float(v)) for v in numbers) and \
+            len(numbers) in (7, 10, 13)
+        if not finite:
+            assert found is None, (m, terms, origin)
+            continue
+        assert (body is None) == (found is not None), (m, terms, origin)
+        if found is not None:
+            assert found[0] in ("mass", "inertia", "origin") and found[1].startswith(f"<{found[0]}")
+
+
 def _awkward_link(rng, i: int) -> str:
     """A link whose inertials, and their masses, tensors and origins, come none, once or
     several times, malformed or not, among comments and other children."""

@@ -16,18 +16,18 @@ import math
 from collections import namedtuple
 
 from urdftool.physics import mat3
-from urdftool.description.values import number_tuple, pose_of
+from urdftool.description.values import number_tuple
 from urdftool.description.xml import first_child
 from urdftool.numbers import MAX_COORDINATE, length as vector_length, power
 
 INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 
-# The bounds of a declared inertial urdftool computes with (the one place they are judged: every
-# command and rule reads a link's inertial through _body). A centre of mass past
-# numbers.MAX_COORDINATE, a mass past MAX_MASS or a moment past MAX_MOMENT is no body: what is
-# derived from it (the parallel-axis m d^2, a sum of masses, m g z, a distance squared)
-# overflowed to inf or NaN in the com-outside-geometry rule's message, `inertia`'s "com inf%",
-# `dynamics`' "P = inf J".
+# The bounds of a declared inertial urdftool computes with (judged in one place, _past: every
+# command and rule reads a link's inertial through _body, and why it gives none through
+# problem_at). A centre of mass past numbers.MAX_COORDINATE, a mass past MAX_MASS or a moment
+# past MAX_MOMENT is no body: what is derived from it (the parallel-axis m d^2, a sum of
+# masses, m g z, a distance squared) overflowed to inf or NaN in the com-outside-geometry
+# rule's message, `inertia`'s "com inf%", `dynamics`' "P = inf J".
 # Within them, m d^2 between two centres of mass is at most 1e30 (2 x 4.6e10)^2 = 8.5e51, and a
 # million links' sums stay finite.
 MAX_MASS = 1e30  # [kg] half the Sun's
@@ -68,13 +68,9 @@ def _declared(inertial, mass_el, inertia_el, origin_el, known: dict | None = Non
     """:func:`declared` of an ``<inertial>`` whose first ``<mass>``, ``<inertia>`` and
     ``<origin>`` (each None when it has none) are found; ``known``: the bodies of the texts
     read before (a robot's: robots repeat their inertials), which it adds to."""
-    if mass_el is None or inertia_el is None:
+    texts = _texts(mass_el, inertia_el, origin_el)
+    if texts is None:
         return None
-    get = inertia_el.get  # the texts it is made of, each read once (a 10,000-link robot)
-    texts = (get("ixx"), get("ixy"), get("ixz"), get("iyy"), get("iyz"), get("izz"),
-             mass_el.get("value"))
-    if origin_el is not None:
-        texts += (origin_el.get("xyz", "0 0 0"), origin_el.get("rpy", "0 0 0"))
     if known is None:
         return _body(texts)
     body = known.get(texts, _NONE)
@@ -83,11 +79,23 @@ def _declared(inertial, mass_el, inertia_el, origin_el, known: dict | None = Non
     return body
 
 
-def _body(texts: tuple) -> Body | None:
-    """The :class:`Body` of an inertial's texts (six inertia terms, the mass, and its
-    origin's xyz and rpy when it has one), or None when a number does not parse, is not finite,
-    or is past :data:`MAX_MASS`, :data:`MAX_MOMENT` or ``MAX_COORDINATE`` (:func:`problem`
-    says which)."""
+def _texts(mass_el, inertia_el, origin_el) -> tuple | None:
+    """The texts an ``<inertial>`` is read from, given its first ``<mass>``, ``<inertia>`` and
+    ``<origin>`` (each None when it has none): the six inertia terms, the mass, and the
+    origin's xyz and rpy when it has one; None without a mass or an inertia."""
+    if mass_el is None or inertia_el is None:
+        return None
+    get = inertia_el.get  # the texts it is made of, each read once (a 10,000-link robot)
+    texts = (get("ixx"), get("ixy"), get("ixz"), get("iyy"), get("iyz"), get("izz"),
+             mass_el.get("value"))
+    if origin_el is not None:
+        texts += (origin_el.get("xyz", "0 0 0"), origin_el.get("rpy", "0 0 0"))
+    return texts
+
+
+def _numbers(texts: tuple):
+    """(mass, the six inertia terms, xyz, rpy) of an inertial's texts (:func:`_texts`), xyz
+    and rpy each None when malformed; None when the mass or a term is no number."""
     # The parsed tuples as they are, no list copies nor dict (a 10,000-link robot asks 70,000
     # times); floats, which mat3.matrix keeps as they are
     xx, xy, xz = number_tuple(texts[0], 1)[0], number_tuple(texts[1], 1)[0], \
@@ -99,64 +107,78 @@ def _body(texts: tuple) -> Body | None:
     mass = number_tuple(texts[6], 1)[0]
     if mass is None:
         return None
-    xx, xy, xz, yy, yz, zz = xx[0], xy[0], xz[0], yy[0], yz[0], zz[0]
-    xyz, rpy = pose_of(*texts[7:])  # a malformed part counts as 0
-    if not _within(mass[0], (xx, xy, xz, yy, yz, zz), xyz, rpy):
+    if len(texts) == 7:  # no <origin>: its defaults
+        xyz = rpy = _ZEROS
+    else:
+        xyz, rpy = number_tuple(texts[7], 3)[0], number_tuple(texts[8], 3)[0]
+    return mass[0], (xx[0], xy[0], xz[0], yy[0], yz[0], zz[0]), xyz, rpy
+
+
+_ZEROS = (0.0, 0.0, 0.0)
+
+
+def _body(texts: tuple) -> Body | None:
+    """The :class:`Body` of an inertial's texts (:func:`_texts`), or None when a number does
+    not parse, is not finite, or is past the bounds urdftool computes with (:func:`_past`
+    says which)."""
+    read = _numbers(texts)
+    if read is None:
+        return None
+    mass, (xx, xy, xz, yy, yz, zz), xyz, rpy = read
+    xyz, rpy = xyz or _ZEROS, rpy or _ZEROS  # a malformed part counts as 0
+    if _past(mass, read[1], xyz) is not None or not (
+            math.isfinite(rpy[0]) and math.isfinite(rpy[1]) and math.isfinite(rpy[2])):
         return None
     tensor, rotation = ((xx, xy, xz), (xy, yy, yz), (xz, yz, zz)), mat3.rpy_matrix(rpy)
     if rotation is mat3.NO_TURN and mat3.kept_by_no_turn(tensor):
-        return Body(mass[0], xyz, tensor)  # (floats already: mat3.rotate's matrix() of it)
-    return Body(mass[0], xyz, mat3.rotate(tensor, rotation))
+        return Body(mass, xyz, tensor)  # (floats already: mat3.rotate's matrix() of it)
+    return Body(mass, xyz, mat3.rotate(tensor, rotation))
 
 
-def _within(mass: float, terms: tuple, xyz: tuple, rpy: tuple) -> bool:
-    """Whether an inertial's numbers are within the bounds urdftool computes with (NaN is
-    not: each comparison is written so that it fails)."""
+def _past(mass: float, terms: tuple, xyz: tuple) -> tuple[str, str] | None:
+    """The one statement of the bounds urdftool computes with: why an inertial's ``mass``,
+    six inertia ``terms`` and centre of mass ``xyz`` are past them (:data:`MAX_MASS`,
+    :data:`MAX_MOMENT`, ``numbers.MAX_COORDINATE``), as (the tag of the ``<inertial>``'s child
+    it is about, the message), the first found; None when within. NaN is past them too (each
+    comparison is written so that it fails). The message names that child first (``<mass>
+    1e+308 kg is past ...``), to follow ``<inertial>``."""
+    if not abs(mass) <= MAX_MASS:
+        from urdftool.numbers import number
+
+        return "mass", (f"<mass> {number(mass)} kg is past the {number(MAX_MASS)} kg urdftool "
+                        "computes mass properties with")
+    for attribute, term in zip(INERTIA_ATTRIBUTES, terms):
+        if not abs(term) <= MAX_MOMENT:
+            from urdftool.numbers import number
+
+            return "inertia", (f"<inertia {attribute}> {number(term)} kg m^2 is past the "
+                               f"{number(MAX_MOMENT)} kg m^2 urdftool computes mass properties "
+                               "with")
     x, y, z = xyz
-    return (-MAX_MASS <= mass <= MAX_MASS and -MAX_MOMENT <= min(terms)
-            and max(terms) <= MAX_MOMENT and not math.isnan(sum(terms))
-            and abs(x) < MAX_COORDINATE and abs(y) < MAX_COORDINATE and abs(z) < MAX_COORDINATE
-            and all(map(math.isfinite, rpy)))
+    if not (abs(x) < MAX_COORDINATE and abs(y) < MAX_COORDINATE and abs(z) < MAX_COORDINATE):
+        from urdftool.numbers import number
+
+        return "origin", (f"<origin> xyz '{' '.join(map(number, xyz))}' is past the "
+                          f"{number(MAX_COORDINATE)} m urdftool places a centre of mass within")
+    return None
 
 
 def problem_at(link) -> tuple[str, str] | None:
     """Why a link's ``<inertial>``, whose mass, inertia and origin all parse as finite numbers,
-    gives no :class:`Body`: a number past the bounds urdftool computes with (:data:`MAX_MASS`,
-    :data:`MAX_MOMENT`, ``numbers.MAX_COORDINATE``); None otherwise (no inertial, a number
-    that does not parse or is not finite: the rules reading those say so), as (the tag of the
-    ``<inertial>``'s child it is about, the message); the message names that child first
-    (``<mass> 1e+308 kg is past ...``), to follow ``<inertial>``."""
-    from urdftool.numbers import number
-
+    gives no :class:`Body`: :func:`_past`'s (tag, message); None otherwise (no inertial, a
+    number that does not parse or is not finite: the rules reading those say so)."""
     inertial = first_child(link, "inertial")
-    mass_el = first_child(inertial, "mass") if inertial is not None else None
-    inertia_el = first_child(inertial, "inertia") if inertial is not None else None
-    if mass_el is None or inertia_el is None:
+    if inertial is None:
         return None
-    mass = number_tuple(mass_el.get("value"), 1)[0]
-    terms = [number_tuple(inertia_el.get(a), 1)[0] for a in INERTIA_ATTRIBUTES]
-    origin_el = first_child(inertial, "origin")
-    xyz, xyz_problem = number_tuple(origin_el.get("xyz", "0 0 0"), 3) if origin_el is not None \
-        else ((0.0, 0.0, 0.0), None)
-    rpy, rpy_problem = number_tuple(origin_el.get("rpy", "0 0 0"), 3) if origin_el is not None \
-        else ((0.0, 0.0, 0.0), None)
-    if mass is None or None in terms or xyz_problem or rpy_problem:
+    texts = _texts(first_child(inertial, "mass"), first_child(inertial, "inertia"),
+                   first_child(inertial, "origin"))
+    read = _numbers(texts) if texts is not None else None
+    if read is None:
         return None
-    values = [mass[0], *(t[0] for t in terms), *xyz, *rpy]
-    if not all(map(math.isfinite, values)):
+    mass, terms, xyz, rpy = read
+    if xyz is None or rpy is None or not all(map(math.isfinite, (mass, *terms, *xyz, *rpy))):
         return None
-    if not abs(mass[0]) <= MAX_MASS:
-        return "mass", (f"<mass> {number(mass[0])} kg is past the {number(MAX_MASS)} kg urdftool "
-                        "computes mass properties with")
-    for attribute, term in zip(INERTIA_ATTRIBUTES, terms):
-        if not abs(term[0]) <= MAX_MOMENT:
-            return "inertia", (f"<inertia {attribute}> {number(term[0])} kg m^2 is past the "
-                               f"{number(MAX_MOMENT)} kg m^2 urdftool computes mass properties "
-                               "with")
-    if not max(map(abs, xyz)) < MAX_COORDINATE:
-        return "origin", (f"<origin> xyz '{' '.join(map(number, xyz))}' is past the "
-                          f"{number(MAX_COORDINATE)} m urdftool places a centre of mass within")
-    return None
+    return _past(mass, terms, xyz)
 
 
 def problem(link) -> str | None:
