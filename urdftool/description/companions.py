@@ -333,7 +333,7 @@ def _package(base: Path, root: Path) -> Path | None:
     for folder in [base, *base.parents]:
         if not inside(folder, root):
             return None
-        if any(kind_of(folder / name) == "file" for name in MANIFESTS):
+        if any(kind_of(os.path.join(folder, name)) == "file" for name in MANIFESTS):
             return folder
         if folder == root:
             return None

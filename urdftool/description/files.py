@@ -584,7 +584,7 @@ def repository_root(start: Path) -> Path | None:
     for is recorded (one made later changes the answer)."""
     start = Path(start)
     for folder in [start, *start.parents]:
-        if kind_of(folder / ".git"):
+        if kind_of(os.path.join(folder, ".git")):  # (a str: no Path made for each look)
             return folder
     return None
 
@@ -597,7 +597,7 @@ def enclosing_root(folder: Path) -> Path | None:
     folder = Path(os.path.abspath(folder))
     return repository_root(folder) or next(
         (f for f in [folder, *folder.parents]
-         if any(kind_of(f / name) == "file" for name in MANIFESTS)), None)
+         if any(kind_of(os.path.join(f, name)) == "file" for name in MANIFESTS)), None)
 
 
 # The files that make a folder a ROS package, as rospack reads them: package.xml (catkin's,
