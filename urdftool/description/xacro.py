@@ -761,6 +761,7 @@ class _Splicer:
         after = node.nextSibling
         previous = node.previousSibling
         while previous:
+            # line ends: xacro's own (a blank of at most one LF is skipped, as xacro counts it)
             if previous.nodeType == xml.dom.Node.TEXT_NODE and previous.data.isspace() and \
                     previous.data.count("\n") <= 1:
                 previous = previous.previousSibling

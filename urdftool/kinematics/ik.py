@@ -211,6 +211,18 @@ def _step(error: np.ndarray, jacobian: np.ndarray, damping: float) -> np.ndarray
         return -(step if np.isfinite(step).all() else _damped_again(hessian, gradient))
 
 
+def _scaled_damping(hessian: np.ndarray) -> np.ndarray:
+    """Levenberg's damping for a descent whose first ``hessian`` (J^T J) is given: ``_DAMPING``
+    of its largest diagonal entry, and at least ``_DAMPING`` (Pinocchio's CLIK example's
+    absolute damping, which a limb of a metre or so keeps). With a point far off the tip
+    (``--point 1e4 0 0``), J^T J is 1e8 and its rounding (1e-8) swamps an absolute 1e-12: the
+    matrix is singular to the bit, and what its solve returns (NaN, or a finite step of no
+    meaning) depended on the CPU's LAPACK kernels: 1 of 20 reachable targets was solved on one
+    machine and 2 on another. Damped relative to its scale, the solve is the same everywhere."""
+    scale = float(np.diagonal(hessian).max(initial=0.0))
+    return _DAMPING * max(scale, 1.0) * np.eye(len(hessian))
+
+
 def _damped_again(hessian: np.ndarray, gradient: np.ndarray) -> np.ndarray:
     """The step of a ``hessian`` whose solve was not finite, damped by ``_DAMPING`` of its
     largest diagonal entry; zero (the seed stalls and the next is tried) when that is not
@@ -244,7 +256,7 @@ def _descend(chain: Chain, x: np.ndarray, target: Target, goal, tolerance: float
     reference = pin.LOCAL_WORLD_ALIGNED if position_only else pin.LOCAL
     log6, jlog6, solve = pin.log6, pin.Jlog6, _solve
     lower, upper = chain.lower, chain.upper
-    damping = _DAMPING * np.eye(len(x))
+    damping = None  # (made at the first step, relative to the limb's scale: _scaled_damping)
     target_position = goal.translation
     tolerance2 = tolerance * tolerance
     best, best_x, since = math.inf, x, 0
@@ -276,7 +288,10 @@ def _descend(chain: Chain, x: np.ndarray, target: Target, goal, tolerance: float
             return best_x, iteration, False, best
         polished = done
         transposed = jacobian.T
-        hessian = transposed @ jacobian + damping
+        hessian = transposed @ jacobian
+        if damping is None:
+            damping = _scaled_damping(hessian)
+        hessian += damping
         gradient = transposed @ residual
         step = solve(hessian, gradient)
         if limited:  # some joint is at a limit: the others' step without those it pushes
