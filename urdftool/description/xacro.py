@@ -761,9 +761,9 @@ class _Splicer:
         after = node.nextSibling
         previous = node.previousSibling
         while previous:
+            text = previous.nodeType == xml.dom.Node.TEXT_NODE
             # line ends: xacro's own (a blank of at most one LF is skipped, as xacro counts it)
-            if previous.nodeType == xml.dom.Node.TEXT_NODE and previous.data.isspace() and \
-                    previous.data.count("\n") <= 1:
+            if text and previous.data.isspace() and previous.data.count("\n") <= 1:
                 previous = previous.previousSibling
             if previous and previous.nodeType == xml.dom.Node.COMMENT_NODE:
                 comment = previous
