@@ -54,6 +54,15 @@ def beside_the_tree(robot) -> list[str]:
     return robot.memo(beside_the_tree, find)
 
 
+def posed_links(robot) -> dict[str, object]:
+    """Link elements by name (:attr:`Robot.links`) but those :func:`beside_the_tree`: the
+    links every command that poses the robot has, and so the ones an option may name (a
+    support, a link to compare, a chain's end)."""
+    dropped = set(beside_the_tree(robot))
+    return {name: link for name, link in robot.links.items() if name not in dropped} \
+        if dropped else robot.links
+
+
 def own_free_base(robot) -> str | None:
     """The robot's own free base: a ``floating`` joint that is the only joint below a root
     link without an ``<inertial>`` (``world`` -> ``base_link``, as a simulator's description
