@@ -12,6 +12,8 @@ def children_by_link(robot) -> dict[str, list[tuple[str, str]]]:
         parent, child = joint.find("parent"), joint.find("child")
         if parent is None or child is None:
             raise TreeError(f"joint '{joint.get('name')}' lacks a parent or child", joint)
+        if joint.get("name") is None:  # (urdfdom refuses it; diff's effects died sorting it)
+            raise TreeError("a <joint> has no name attribute", joint)
         children.setdefault(parent.get("link"), []).append((joint.get("name"), child.get("link")))
     for entries in children.values():
         entries.sort(key=lambda entry: entry[0].encode())
