@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Callable
 
 import numpy as np
 
@@ -81,6 +82,13 @@ class _Joint:
         return np.stack([self.placement, *self.terms]).reshape(3, 16)
 
 
+# [poses] computed, and held, at a time when the poses of many configurations are written
+# (PoseBlocks): 2^16 poses are 8 MB of matrices and about as much again of their components;
+# every pose of a --q-file at once was 4 KB a pose with its texts (12,000 rows of a 300-link
+# chain: tens of GB, out of memory)
+POSES_PER_BLOCK = 1 << 16
+
+
 @dataclass
 class FKResult:
     """Poses ``matrices[rows, frames, 4, 4]`` of ``frames`` relative to ``base``."""
@@ -89,6 +97,41 @@ class FKResult:
     frames: list[str]
     matrices: np.ndarray
     warnings: list[str] = field(default_factory=list)
+
+    @property
+    def rows(self) -> int:
+        return len(self.matrices)
+
+    def blocks(self):
+        """(first row, poses ``[block rows, frames, 4, 4]``) of consecutive blocks of rows, as
+        :meth:`PoseBlocks.blocks` gives them (views of :attr:`matrices`)."""
+        step = _block_rows(len(self.frames))
+        for start in range(0, self.rows, step):
+            yield start, self.matrices[start:start + step]
+
+
+@dataclass
+class PoseBlocks:
+    """The poses of ``frames`` relative to ``base`` for ``rows`` configurations, computed a block
+    of rows at a time as they are asked for (:meth:`blocks`): what a writer of every pose holds
+    is one block's, whatever the rows (:data:`POSES_PER_BLOCK`)."""
+
+    base: str
+    frames: list[str]
+    rows: int
+    warnings: list[str]
+    compute: Callable[[int, int], np.ndarray]  # (start, stop) -> [stop - start, frames, 4, 4]
+
+    def blocks(self):
+        """(first row, poses ``[block rows, frames, 4, 4]``) of consecutive blocks of rows."""
+        step = _block_rows(len(self.frames))
+        for start in range(0, self.rows, step):
+            yield start, self.compute(start, min(start + step, self.rows))
+
+
+def _block_rows(frames: int) -> int:
+    """Rows of a block of at most :data:`POSES_PER_BLOCK` poses (at least one row)."""
+    return max(1, POSES_PER_BLOCK // max(frames, 1))
 
 
 class KinematicModel:
@@ -473,18 +516,30 @@ def unit_axis(element) -> np.ndarray:
 def forward_kinematics(model: KinematicModel, configurations: Configurations,
                        frames: list[str] | None = None, base: str | None = None) -> FKResult:
     """Poses of ``frames`` (default: every link) relative to ``base`` (default: the root)."""
+    found = forward_kinematics_blocks(model, configurations, frames, base)
+    return FKResult(found.base, found.frames, found.compute(0, found.rows), found.warnings)
+
+
+def forward_kinematics_blocks(model: KinematicModel, configurations: Configurations,
+                              frames: list[str] | None = None,
+                              base: str | None = None) -> PoseBlocks:
+    """The poses of :func:`forward_kinematics`, computed a block of rows at a time as a writer
+    asks for them (the same numbers: each row's poses are computed alone either way)."""
     index = {name: i for i, name in enumerate(model.links)}
     UnknownLink.unless_among((frames or []) + ([base] if base else []), model.links)
     chosen = [index[name] for name in frames] if frames else list(range(len(model.links)))
-    if base:
-        poses = model._frame_poses(configurations.values, chosen + [index[base]])
-        poses = np.matmul(transforms.invert(poses[-1]), poses[:-1])
-    else:
-        poses = model._frame_poses(configurations.values, chosen)
-    matrices = np.moveaxis(poses, 0, 1)
-    root = base or model.root_frame
-    return FKResult(root, [model.links[i] for i in chosen], matrices,
-                    list(configurations.warnings))
+    values = configurations.values
+
+    def compute(start: int, stop: int) -> np.ndarray:
+        if base:
+            poses = model._frame_poses(values[start:stop], chosen + [index[base]])
+            poses = np.matmul(transforms.invert(poses[-1]), poses[:-1])
+        else:
+            poses = model._frame_poses(values[start:stop], chosen)
+        return np.moveaxis(poses, 0, 1)
+
+    return PoseBlocks(base or model.root_frame, [model.links[i] for i in chosen], len(values),
+                      list(configurations.warnings), compute)
 
 
 def pose_components(matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
