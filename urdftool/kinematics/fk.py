@@ -105,9 +105,8 @@ class FKResult:
     def blocks(self):
         """(first row, poses ``[block rows, frames, 4, 4]``) of consecutive blocks of rows, as
         :meth:`PoseBlocks.blocks` gives them (views of :attr:`matrices`)."""
-        step = _block_rows(len(self.frames))
-        for start in range(0, self.rows, step):
-            yield start, self.matrices[start:start + step]
+        for start, stop in block_ranges(self.rows, len(self.frames)):
+            yield start, self.matrices[start:stop]
 
 
 @dataclass
@@ -124,14 +123,22 @@ class PoseBlocks:
 
     def blocks(self):
         """(first row, poses ``[block rows, frames, 4, 4]``) of consecutive blocks of rows."""
-        step = _block_rows(len(self.frames))
-        for start in range(0, self.rows, step):
-            yield start, self.compute(start, min(start + step, self.rows))
+        for start, stop in block_ranges(self.rows, len(self.frames)):
+            yield start, self.compute(start, stop)
 
 
-def _block_rows(frames: int) -> int:
-    """Rows of a block of at most :data:`POSES_PER_BLOCK` poses (at least one row)."""
-    return max(1, POSES_PER_BLOCK // max(frames, 1))
+def block_ranges(rows: int, frames: int) -> list[tuple[int, int]]:
+    """(start, stop) of consecutive blocks of ``rows`` rows of ``frames`` poses each, at most
+    :data:`POSES_PER_BLOCK` poses a block, and never a block of one row of several: numpy's
+    product of one row (``[1, 3] @ [3, 16]``, :meth:`KinematicModel._local`) is BLAS's gemv,
+    of several its gemm, whose last bits differ (a pose's 17th digit, in JSON and CSV); gemm's
+    rows are its rows whatever their number, so blocks of two or more give each row the bits
+    every row at once gives it."""
+    step = max(2, POSES_PER_BLOCK // max(frames, 1))
+    ranges = [(start, min(start + step, rows)) for start in range(0, rows, step)]
+    if len(ranges) > 1 and ranges[-1][1] - ranges[-1][0] == 1:  # (its row to the one before)
+        ranges[-2:] = [(ranges[-2][0], rows)]
+    return ranges
 
 
 class KinematicModel:
