@@ -83,10 +83,10 @@ class _Joint:
 
 
 # [poses] computed, and held, at a time when the poses of many configurations are written
-# (PoseBlocks): 2^16 poses are 8 MB of matrices and about as much again of their components;
-# every pose of a --q-file at once was 4 KB a pose with its texts (12,000 rows of a 300-link
-# chain: tens of GB, out of memory)
-POSES_PER_BLOCK = 1 << 16
+# (PoseBlocks): 2^14 poses are 2 MB of matrices and some 30 MB of their texts at most (2^16:
+# 110 MB more at the peak, no faster); every pose of a --q-file at once was 1.4 KB a pose with
+# its texts (12,000 rows of a 300-link chain: 5 GB of text tables, past the 2 GiB budget)
+POSES_PER_BLOCK = 1 << 14
 
 
 @dataclass
