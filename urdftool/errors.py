@@ -592,19 +592,23 @@ class UnknownName(UrdftoolError, ValueError):
 class UnknownLink(UnknownName):
     """A link asked for by name that the robot does not have; the message lists the others."""
 
-    def __init__(self, wanted: str, names):
-        super().__init__(f"link '{wanted}' does not exist; " + available("links", wanted, names))
+    def __init__(self, wanted: str, names, beside: bool = False):
+        what = ("is beside the tree (no joint from the root reaches it: urdfdom drops it, and "
+                "no command poses it)") if beside else "does not exist"
+        super().__init__(f"link '{wanted}' {what}; " + available("links", wanted, names))
         self.wanted = wanted
 
     @classmethod
-    def unless_among(cls, wanted, names) -> None:
+    def unless_among(cls, wanted, names, beside=()) -> None:
         """Raise for the first of ``wanted`` (link names asked for: a command line's) that is
-        not among ``names`` (a robot's links): the one check of every command that names
+        not among ``names`` (a robot's links, as its model has them), saying so of one of
+        ``beside`` (links of the robot its model leaves out:
+        ``kinematics.tree.beside_the_tree``): the one check of every command that names
         links, made before any work that might not look at them (diff's reach of a chain is
         computed only when the robots differ: an unknown link named there was "equivalent")."""
         for name in wanted:
             if name not in names:
-                raise cls(name, names)
+                raise cls(name, names, name in beside)
 
 
 class UnknownRule(UnknownName):

@@ -374,3 +374,21 @@ def test_dynamics_beside_the_tree_has_pinocchios_mass(tmp_path, run_cli):
     result = run_cli("dynamics", "--timeout", "0", "--max-memory", "0", path, "-f", "json")
     assert json.loads(result.stdout)["total_mass"] == pytest.approx(
         sum(inertia.mass for inertia in model.inertias)) == pytest.approx(3.0)
+
+
+@pytest.mark.parametrize("words", [
+    ["fk", "--frame", "a"], ["dh", "--base", "a", "--tip", "b"], ["dh", "--tip", "a"],
+    ["ik", "--tip", "a", "--xyz", "0", "0", "0"], ["workspace", "--tip", "a"],
+    ["dynamics", "--support", "a"], ["inertia", "--link", "a"],
+    ["diff", "SAME", "--chain", "r:a"]])
+def test_a_link_beside_the_tree_named_by_an_option_is_said_so(tmp_path, run_cli, words):
+    """An option naming a link beside the tree: every command refuses it as the link no model
+    has (exit 2), saying why. dynamics --support died in an IndexError, dh made a chain of
+    links no model poses, inertia compared it, fk, ik and workspace said it did not exist."""
+    path = tmp_path / "r.urdf"
+    path.write_text(_beside_the_tree())
+    command, *rest = words
+    result = run_cli(command, "--timeout", "0", "--max-memory", "0", path,
+                     *[str(path) if word == "SAME" else word for word in rest])
+    assert result.exit_code == 2, result.output
+    assert "link 'a' is beside the tree (no joint from the root reaches it" in result.stderr

@@ -264,3 +264,18 @@ def test_a_warning_is_said_once_on_stderr_not_in_the_report(run_cli, pair):
     # (the same on both sides: said once, where the new file has it)
     assert [line.split(": ")[2:4] for line in result.stderr.splitlines()
             if "gone.stl" in line] == [["old and new", f"{new}:25"]]
+
+
+def test_a_side_with_a_joint_without_a_name_is_compared_without_its_effects(run_cli, tmp_path):
+    """A joint without a name (urdfdom refuses it: U103): diff died sorting the joints by name
+    ('NoneType' object has no attribute 'encode'); the structure is compared and the effects
+    are said not computed, as for a robot of two roots."""
+    robot = ('<robot name="r"><link name="a"/><link name="b"/><joint {name}type="fixed">'
+             '<parent link="a"/><child link="b"/></joint></robot>')
+    old, new = tmp_path / "old.urdf", tmp_path / "new.urdf"
+    old.write_text(robot.format(name=""))
+    new.write_text(robot.format(name='name="j" '))
+    result = run_cli("diff", old, new)
+    assert result.exit_code == 1, result.output
+    assert "effects not computed: a <joint> has no name attribute" in result.stderr
+    assert "added joint 'j'" in result.stdout

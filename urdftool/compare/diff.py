@@ -107,11 +107,13 @@ def _known_chains(old, new, found, chains) -> None:
     """UnknownLink for a ``chains`` link ``new`` does not have, or ``old`` under its old name,
     whether or not the effects are computed."""
     from urdftool.errors import UnknownLink
+    from urdftool.kinematics.tree import beside_the_tree, posed_links
 
     back = {new_name: old_name for old_name, new_name in found.links.items()}
-    for ends in chains:
-        UnknownLink.unless_among(ends, new.links)
-        UnknownLink.unless_among([back.get(name, name) for name in ends], old.links)
+    for ends in chains:  # (a link beside the tree is in no model: no reach to compare)
+        UnknownLink.unless_among(ends, posed_links(new), beside_the_tree(new))
+        UnknownLink.unless_among([back.get(name, name) for name in ends], posed_links(old),
+                                 beside_the_tree(old))
 
 
 def _physical(change: Change) -> bool:

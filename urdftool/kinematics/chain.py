@@ -192,7 +192,9 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
     kinematics = kinematics or KinematicModel(robot)
     full = kinematics.model
     base = base or kinematics.links[0]
-    UnknownLink.unless_among((base, tip), kinematics.links)
+    from urdftool.kinematics.tree import beside_the_tree
+
+    UnknownLink.unless_among((base, tip), kinematics.links, beside_the_tree(robot))
     row = np.array([v.default for v in kinematics.variables]) if row is None else \
         np.asarray(row, dtype=float).copy()
     frame = {name: full.getFrameId(name, pin.FrameType.BODY) for name in (base, tip)}

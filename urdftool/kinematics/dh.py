@@ -111,7 +111,9 @@ def table_fk(table: DHTable, values: np.ndarray) -> np.ndarray:
 
 def chain(robot, base: str, tip: str) -> list:
     """The joint elements from ``base`` down to ``tip``; DHError when tip is not below base."""
-    UnknownLink.unless_among((base, tip), robot.links)
+    from urdftool.kinematics.tree import beside_the_tree, posed_links
+
+    UnknownLink.unless_among((base, tip), posed_links(robot), beside_the_tree(robot))
     parent_joint = {}
     for joint in robot.children("joint"):
         child = joint.find("child")

@@ -26,7 +26,7 @@ import numpy as np
 from urdftool.description.urdf import MOVING
 from urdftool.errors import FKError, TreeError, UnknownLink
 from urdftool.kinematics import transforms
-from urdftool.kinematics.tree import children_by_link, root_link
+from urdftool.kinematics.tree import beside_the_tree, children_by_link, root_link
 from urdftool.kinematics.configuration import (FLOATING_COORDINATES, PLANAR_COORDINATES, Configurations, MimicError,
                             Variable, mimic_source, mimics_of, variables_of)
 from urdftool.numbers import (MAX_COORDINATE, length as vector_length, power,
@@ -533,7 +533,8 @@ def forward_kinematics_blocks(model: KinematicModel, configurations: Configurati
     """The poses of :func:`forward_kinematics`, computed a block of rows at a time as a writer
     asks for them (the same numbers: each row's poses are computed alone either way)."""
     index = {name: i for i, name in enumerate(model.links)}
-    UnknownLink.unless_among((frames or []) + ([base] if base else []), model.links)
+    UnknownLink.unless_among((frames or []) + ([base] if base else []), model.links,
+                             beside_the_tree(model.robot))
     chosen = [index[name] for name in frames] if frames else list(range(len(model.links)))
     values = configurations.values
 

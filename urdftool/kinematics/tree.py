@@ -12,6 +12,8 @@ def children_by_link(robot) -> dict[str, list[tuple[str, str]]]:
         parent, child = joint.find("parent"), joint.find("child")
         if parent is None or child is None:
             raise TreeError(f"joint '{joint.get('name')}' lacks a parent or child", joint)
+        if joint.get("name") is None:  # (urdfdom refuses it; diff's effects died sorting it)
+            raise TreeError("a <joint> has no name attribute", joint)
         children.setdefault(parent.get("link"), []).append((joint.get("name"), child.get("link")))
     for entries in children.values():
         entries.sort(key=lambda entry: entry[0].encode())
@@ -52,6 +54,15 @@ def beside_the_tree(robot) -> list[str]:
         return [name for name in robot.links if name not in reached]
 
     return robot.memo(beside_the_tree, find)
+
+
+def posed_links(robot) -> dict[str, object]:
+    """Link elements by name (:attr:`Robot.links`) but those :func:`beside_the_tree`: the
+    links every command that poses the robot has, and so the ones an option may name (a
+    support, a link to compare, a chain's end)."""
+    dropped = set(beside_the_tree(robot))
+    return {name: link for name, link in robot.links.items() if name not in dropped} \
+        if dropped else robot.links
 
 
 def own_free_base(robot) -> str | None:

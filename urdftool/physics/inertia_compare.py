@@ -150,13 +150,12 @@ def _movers(robot) -> dict:
 def compare(robot, density: float | None = None, links: list[str] | None = None):
     """Every link of the robot's tree (or the named ones), in document order: the links the
     commands that pose it pose, those beside the tree left out as urdfdom drops them
-    (:func:`~urdftool.kinematics.tree.beside_the_tree`); UnknownLink when one of ``links``
+    (:func:`~urdftool.kinematics.tree.posed_links`); UnknownLink when one of ``links``
     is not among them."""
-    from urdftool.kinematics.tree import beside_the_tree
+    from urdftool.kinematics.tree import beside_the_tree, posed_links
 
-    dropped = set(beside_the_tree(robot))
-    tree = {name: link for name, link in robot.links.items() if name not in dropped}
-    UnknownLink.unless_among(links or (), tree)
+    tree = posed_links(robot)
+    UnknownLink.unless_among(links or (), tree, beside_the_tree(robot))
     chosen = [link for name, link in tree.items() if not links or name in links]
     return [compare_link(robot, link, density) for link in chosen]
 

@@ -9,6 +9,7 @@ plain OBJ, scipy (qhull) only for the convex hull of an open mesh.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -262,11 +263,20 @@ def _quietly(compute, *args):
         return compute(*args)
 
 
+@functools.cache
+def mesh_reader():
+    """(MeshProblem, mesh_facts, read_as_assumed), imported when a mesh is first measured (a robot without
+    meshes does not import them), then kept: an import statement in each call (a mesh's box,
+    its entry, its piece) ran importlib's Python for each of the corpus's 5,000 asks."""
+    from urdftool.description.meshes import MeshProblem, mesh_facts, read_as_assumed
+
+    return MeshProblem, mesh_facts, read_as_assumed
+
+
 def _mesh_entry(robot, shape: Shape) -> _Entry:
     """A mesh shape's entry: its solid when closed, else the open mesh (its hull is built only
     when asked), or a problem when it does not resolve or load."""
-    from urdftool.description.meshes import MeshProblem, mesh_facts, read_as_assumed
-
+    MeshProblem, mesh_facts, read_as_assumed = mesh_reader()
     entry = _Entry(shape)
     try:
         mesh = mesh_facts(robot, shape.params["filename"], shape.params["scale"])
@@ -667,8 +677,7 @@ def _local_bounds(robot, shape: Shape):
     """A shape's box in its own frame, or None for a mesh that does not resolve or load."""
     if shape.kind != "mesh":
         return _local_box(shape)
-    from urdftool.description.meshes import MeshProblem, mesh_facts
-
+    MeshProblem, mesh_facts, _ = mesh_reader()
     try:
         mesh = mesh_facts(robot, shape.params["filename"], shape.params["scale"])
     except MeshProblem:

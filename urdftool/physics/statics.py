@@ -108,6 +108,7 @@ def build_standing(robot, supports: list[str]) -> Standing:
     for an unknown support or one without geometry."""
     import pinocchio as pin
 
+    from urdftool.kinematics.tree import beside_the_tree, posed_links
     from urdftool.physics.dynamics import build
     from urdftool.physics.solids import surface_points
 
@@ -119,7 +120,9 @@ def build_standing(robot, supports: list[str]) -> Standing:
     model = Model(floating, free.data, fixed.joints, fixed.variables, fixed.mimics,
                   multiple=fixed.multiple)
     frames, points = [], []
-    UnknownLink.unless_among(supports, robot.links)  # (a usage error in every command)
+    # (a usage error in every command; a link beside the tree is in no model: its frame was
+    # an IndexError)
+    UnknownLink.unless_among(supports, posed_links(robot), beside_the_tree(robot))
     for name in supports:
         link_points, problems = surface_points(robot, robot.links[name])
         if not len(link_points):

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 from urdftool.physics import mat3
 from urdftool.physics.frames import Frame
 from urdftool.physics.solids import GROUP_DIRECT, _bodies, body_points, _fixed_neighbours, \
-    _link_shapes, rigid_group, _rigid_frames
+    _link_shapes, mesh_reader, rigid_group, _rigid_frames
 from urdftool.numbers import power
 
 TAGS = ("visual", "collision")
@@ -818,7 +818,7 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
         return Piece("cylinder", centre, rotation, (p["radius"], p["length"] / 2), link=member)
     if shape.kind == "sphere":
         return Piece("sphere", centre, rotation, (p["radius"],), link=member)
-    problem_type, mesh_facts = _meshes()
+    problem_type, mesh_facts, _ = mesh_reader()
     try:
         mesh = mesh_facts(robot, p["filename"], p["scale"])
     except problem_type as problem:
@@ -836,15 +836,6 @@ def _piece(robot, shape, frame: Frame, member: str) -> Piece | str:
         piece.inner = _placed(mesh.inner_points, rotation, centre)
     # else nothing overflows: its inner points are placed when a star asks (inner_placed)
     return piece
-
-
-@functools.cache
-def _meshes():
-    """(MeshProblem, mesh_facts), imported when a mesh is first placed (a robot without
-    meshes does not import them), then kept (an import statement per piece costs more)."""
-    from urdftool.description.meshes import MeshProblem, mesh_facts
-
-    return MeshProblem, mesh_facts
 
 
 def _placed(points, rotation, centre):

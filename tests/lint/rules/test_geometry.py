@@ -653,3 +653,18 @@ def test_a_material_defined_by_a_later_visual_is_said_to_be_used_before_it(tmp_p
     assert len(found) == 2, found
     assert "'black' is not defined; available materials: blue" in found[0], found
     assert "'blue' is used before it is defined (link 'lift', later" in found[1], found
+
+
+def test_a_mesh_format_another_simulator_reads_is_said_to_be_its(tmp_path):
+    """Drake's evo_bowl_compliant.urdf collides with a .vtk tetrahedral mesh (hydroelastic
+    contact): "has extension '.vtk', not one of .stl, ...; not opened" read as a typo to a
+    Drake user. The warning names who reads the format; an unknown one is as before."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "bowl.vtk").write_text("# vtk DataFile Version 3.0\n")
+    (tmp_path / "bowl.mesh").write_text("ogre\n")
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "bowl.vtk", "U410")
+    assert severity == Severity.WARNING and "Drake reads it" in message, message
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "bowl.mesh", "U410")
+    assert message.endswith("; not opened"), message

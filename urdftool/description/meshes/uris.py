@@ -474,8 +474,17 @@ def _checked(uri: str, named: str, base: str, package: str | None,
     suffix = _suffix(path)
     if suffix.lower() not in MESH_EXTENSIONS:
         return MeshProblem("format", (f"mesh '{uri}' has extension '{suffix}', not one of "
-                                      f"{', '.join(MESH_EXTENSIONS)}; not opened"))
+                                      f"{', '.join(MESH_EXTENSIONS)}; not opened"
+                                      + _READ_BY.get(suffix.lower(), "")))
     return Path(path)
+
+
+# who reads a mesh format urdftool does not open, as a message names them: a reader of the
+# file's own simulator sees a warning about a file written for it, not a typo
+_READ_BY = {".vtk": " (a VTK volume mesh: Drake reads it, for hydroelastic contact; "
+                    "urdfdom's viewers and other simulators do not)",
+            ".usd": " (USD: only Isaac Sim reads it)", ".usda": " (USD: only Isaac Sim reads it)",
+            ".usdc": " (USD: only Isaac Sim reads it)"}
 
 
 def _suffix(path: str) -> str:
