@@ -117,3 +117,19 @@ def test_a_signed_zero_is_found_as_the_pattern_finds_it():
              for _ in range(3000)]
     assert sum(_signed_zero(t) for t in texts) > 100
     assert all(_signed_zero(t) == (_NEGATIVE_ZERO.search(t) is not None) for t in texts)
+
+
+@pytest.mark.parametrize("items", [
+    [], [1], [1, 2, 3], ["a" * 40, "b" * 40], ["a" * 40, "b" * 60],
+    [{"x": [0.5] * 30}, {"y": -0.0}, {"z": math.inf}, {"\udcff": "\ufffd"}],
+    [{"frame": f"l{k}", "position": [0.1 * k, -0.0, 1e-300]} for k in range(50)],
+    [[{"deep": [[-0.0, math.nan]] * 40}] * 3, "short"]])
+def test_a_list_written_member_by_member_is_the_list_written_whole(items):
+    """write_json_list (fk's documents, as they are computed) writes what write_json writes of
+    the whole list, a short list on one line, each member cleaned as the list would be."""
+    from urdftool.report.json_output import write_json_list
+
+    whole, streamed = io.StringIO(), io.StringIO()
+    write_json(items, whole)
+    write_json_list(iter(items), streamed)
+    assert streamed.getvalue() == whole.getvalue()

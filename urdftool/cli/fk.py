@@ -45,7 +45,7 @@ def fk(
 ) -> None:
     from urdftool.kinematics import configuration as config
     from urdftool.kinematics.dh import DHError, load_table, table_forward, verify as dh_verify
-    from urdftool.kinematics.fk import FKError, KinematicModel, forward_kinematics
+    from urdftool.kinematics.fk import FKError, KinematicModel, forward_kinematics_blocks
     from urdftool.report.fk import verify_line, write_poses
 
     robot = single_robot("fk", words, arg, package, {"--format": (output_format, FORMATS)}, (
@@ -73,7 +73,7 @@ def fk(
         if table is not None:
             result = table_forward(table, model, configurations, base, tip)
         else:
-            result = forward_kinematics(model, configurations, frame or None, base)
+            result = forward_kinematics_blocks(model, configurations, frame or None, base)
     except config.ConfigError as error:
         fail_config(error, "--q")
     except DHError as error:

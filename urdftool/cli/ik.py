@@ -100,24 +100,63 @@ def ik(
     except (FKError, IKError, UnknownName) as error:
         fail_at(robot, error)
     warn(found.warnings)
-    chain, solutions = found.chain, found.solutions
-    numeric = sum(s.method != "closed form" for s in solutions)
-    if method == "closed-form" and numeric:
-        which = "the target was" if len(solutions) == 1 else \
-            f"{numeric} of {len(solutions)} targets were"
+    chain, solutions = found.chain, _Tally(found.solutions)
+    # each target solved as its output is written: what is held is one target's, whatever the
+    # targets of a file (every solution and the whole text were held until the end); one
+    # target is solved first, and --method closed-form's warning said before its output
+    warned = found.count == 1 and solutions.hold() and _closed_form_warning(method, solutions)
+    if output_format == "json":
+        from urdftool.report.json_output import write_json, write_json_list
+
+        documents = (render.as_dict(chain, s, given) for s in solutions)
+        if xyz is not None or target_frame:
+            write_json(next(documents))
+            for _ in documents:  # (none: one target)
+                pass
+        else:
+            write_json_list(documents)
+    else:
+        pieces = render.csv_text(chain, solutions) if output_format == "csv" else \
+            render.reach_text(chain, solutions, tol) if check_reach else \
+            render.text(chain, solutions, given)
+        for piece in pieces:
+            show(piece, nl=False)
+    if not warned:
+        _closed_form_warning(method, solutions)
+    raise typer.Exit(0 if solutions.solved == solutions.count else 1)
+
+
+def _closed_form_warning(method: str, solutions: "_Tally") -> bool:
+    """Warn when --method closed-form solved targets numerically; True (said or not)."""
+    if method == "closed-form" and solutions.numeric:
+        which = "the target was" if solutions.count == 1 else \
+            f"{solutions.numeric} of {solutions.count} targets were"
         warn([f"--method closed-form: {which} solved numerically: the closed form takes a "
               "planar limb of 2 parallel revolute joints (3 given an orientation), or a 6-joint "
               "arm with a spherical wrist given an orientation, and a branch of it within the "
               "limits"])
-    if output_format == "json":
-        from urdftool.report.json_output import write_json
+    return True
 
-        documents = [render.as_dict(chain, s, given) for s in solutions]
-        write_json(documents[0] if xyz is not None or target_frame else documents)
-    elif output_format == "csv":
-        show(render.csv_text(chain, solutions), nl=False)
-    elif check_reach:
-        show(render.reach_text(chain, solutions, tol), nl=False)
-    else:
-        show(render.text(chain, solutions, given), nl=False)
-    raise typer.Exit(0 if all(s.solved for s in solutions) else 1)
+
+class _Tally:
+    """The solutions as they are solved, counted: how many, how many solved, how many
+    numerically (the exit status and --method closed-form's warning, said after them)."""
+
+    def __init__(self, solutions):
+        self._solutions, self.count, self.solved, self.numeric = solutions, 0, 0, 0
+        self._held = None
+
+    def hold(self) -> bool:
+        """Solve every target now (one), counted, and keep the solutions; True."""
+        self._held = list(self)
+        return True
+
+    def __iter__(self):
+        if self._held is not None:
+            yield from self._held
+            return
+        for solution in self._solutions:
+            self.count += 1
+            self.solved += bool(solution.solved)
+            self.numeric += solution.method != "closed form"
+            yield solution

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import Callable
 
 import numpy as np
 
@@ -81,6 +82,13 @@ class _Joint:
         return np.stack([self.placement, *self.terms]).reshape(3, 16)
 
 
+# [poses] computed, and held, at a time when the poses of many configurations are written
+# (PoseBlocks): 2^14 poses are 2 MB of matrices and some 30 MB of their texts at most (2^16:
+# 110 MB more at the peak, no faster); every pose of a --q-file at once was 1.4 KB a pose with
+# its texts (12,000 rows of a 300-link chain: 5 GB of text tables, past the 2 GiB budget)
+POSES_PER_BLOCK = 1 << 14
+
+
 @dataclass
 class FKResult:
     """Poses ``matrices[rows, frames, 4, 4]`` of ``frames`` relative to ``base``."""
@@ -89,6 +97,48 @@ class FKResult:
     frames: list[str]
     matrices: np.ndarray
     warnings: list[str] = field(default_factory=list)
+
+    @property
+    def rows(self) -> int:
+        return len(self.matrices)
+
+    def blocks(self):
+        """(first row, poses ``[block rows, frames, 4, 4]``) of consecutive blocks of rows, as
+        :meth:`PoseBlocks.blocks` gives them (views of :attr:`matrices`)."""
+        for start, stop in block_ranges(self.rows, len(self.frames)):
+            yield start, self.matrices[start:stop]
+
+
+@dataclass
+class PoseBlocks:
+    """The poses of ``frames`` relative to ``base`` for ``rows`` configurations, computed a block
+    of rows at a time as they are asked for (:meth:`blocks`): what a writer of every pose holds
+    is one block's, whatever the rows (:data:`POSES_PER_BLOCK`)."""
+
+    base: str
+    frames: list[str]
+    rows: int
+    warnings: list[str]
+    compute: Callable[[int, int], np.ndarray]  # (start, stop) -> [stop - start, frames, 4, 4]
+
+    def blocks(self):
+        """(first row, poses ``[block rows, frames, 4, 4]``) of consecutive blocks of rows."""
+        for start, stop in block_ranges(self.rows, len(self.frames)):
+            yield start, self.compute(start, stop)
+
+
+def block_ranges(rows: int, frames: int) -> list[tuple[int, int]]:
+    """(start, stop) of consecutive blocks of ``rows`` rows of ``frames`` poses each, at most
+    :data:`POSES_PER_BLOCK` poses a block, and never a block of one row of several: numpy's
+    product of one row (``[1, 3] @ [3, 16]``, :meth:`KinematicModel._local`) is BLAS's gemv,
+    of several its gemm, whose last bits differ (a pose's 17th digit, in JSON and CSV); gemm's
+    rows are its rows whatever their number, so blocks of two or more give each row the bits
+    every row at once gives it."""
+    step = max(2, POSES_PER_BLOCK // max(frames, 1))
+    ranges = [(start, min(start + step, rows)) for start in range(0, rows, step)]
+    if len(ranges) > 1 and ranges[-1][1] - ranges[-1][0] == 1:  # (its row to the one before)
+        ranges[-2:] = [(ranges[-2][0], rows)]
+    return ranges
 
 
 class KinematicModel:
@@ -473,19 +523,31 @@ def unit_axis(element) -> np.ndarray:
 def forward_kinematics(model: KinematicModel, configurations: Configurations,
                        frames: list[str] | None = None, base: str | None = None) -> FKResult:
     """Poses of ``frames`` (default: every link) relative to ``base`` (default: the root)."""
+    found = forward_kinematics_blocks(model, configurations, frames, base)
+    return FKResult(found.base, found.frames, found.compute(0, found.rows), found.warnings)
+
+
+def forward_kinematics_blocks(model: KinematicModel, configurations: Configurations,
+                              frames: list[str] | None = None,
+                              base: str | None = None) -> PoseBlocks:
+    """The poses of :func:`forward_kinematics`, computed a block of rows at a time as a writer
+    asks for them (the same numbers: each row's poses are computed alone either way)."""
     index = {name: i for i, name in enumerate(model.links)}
     UnknownLink.unless_among((frames or []) + ([base] if base else []), model.links,
                              beside_the_tree(model.robot))
     chosen = [index[name] for name in frames] if frames else list(range(len(model.links)))
-    if base:
-        poses = model._frame_poses(configurations.values, chosen + [index[base]])
-        poses = np.matmul(transforms.invert(poses[-1]), poses[:-1])
-    else:
-        poses = model._frame_poses(configurations.values, chosen)
-    matrices = np.moveaxis(poses, 0, 1)
-    root = base or model.root_frame
-    return FKResult(root, [model.links[i] for i in chosen], matrices,
-                    list(configurations.warnings))
+    values = configurations.values
+
+    def compute(start: int, stop: int) -> np.ndarray:
+        if base:
+            poses = model._frame_poses(values[start:stop], chosen + [index[base]])
+            poses = np.matmul(transforms.invert(poses[-1]), poses[:-1])
+        else:
+            poses = model._frame_poses(values[start:stop], chosen)
+        return np.moveaxis(poses, 0, 1)
+
+    return PoseBlocks(base or model.root_frame, [model.links[i] for i in chosen], len(values),
+                      list(configurations.warnings), compute)
 
 
 def pose_components(matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

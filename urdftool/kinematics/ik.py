@@ -23,6 +23,7 @@ angle [rad] between the pose reached and the target.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -335,12 +336,15 @@ def blocking_limits(chain: Chain, x: np.ndarray, target: Target) -> list[tuple[s
 
 @dataclass
 class LimbSolutions:
-    """What :func:`solve_limb` found: the limb (``chain``), a solution per target, in order, and
-    warnings about the starting configuration (a joint outside its limits)."""
+    """What :func:`solve_limb` found: the limb (``chain``), a solution per target, in order
+    (``count`` of them, each solved as it is iterated, once: a writer holds one, whatever the
+    targets of a file), and warnings about the starting configuration (a joint outside its
+    limits)."""
 
     chain: Chain
-    solutions: list[Solution]
+    solutions: Iterator[Solution]
     warnings: list[str]
+    count: int = 1
 
 
 def solve_limb(robot, tip: str, base: str | None = None, point=None,
@@ -390,8 +394,8 @@ def solve_limb(robot, tip: str, base: str | None = None, point=None,
             "xyz" if error.argument == "xyz" and argument == "orientation" else argument
         raise
     starts = seeds(chain, seeds_count, seed)
-    return LimbSolutions(chain, [solve(chain, goal, starts, tolerance, iterations, method)
-                                 for goal in wanted], start.warnings)
+    return LimbSolutions(chain, (solve(chain, goal, starts, tolerance, iterations, method)
+                                 for goal in wanted), start.warnings, len(wanted))
 
 
 def seeds(chain: Chain, count: int, seed: int, first: np.ndarray | None = None) -> np.ndarray:

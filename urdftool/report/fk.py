@@ -18,36 +18,49 @@ def verify_line(count: int, seed, position: float, rotation: float, tolerance: f
 
 def write_poses(result, output_format: str, matrix: bool, single: bool, stream=None,
                 drawn=None) -> None:
-    """``result`` (urdftool.kinematics.fk.FKResult) in ``output_format``: text, json or csv.
+    """``result`` (urdftool.kinematics.fk.FKResult or PoseBlocks) in ``output_format``: text,
+    json or csv, a block of rows at a time (``result.blocks()``): what is held is one block's
+    poses and texts, whatever the rows (12,000 rows of a 300-link chain held every pose and its
+    text at once: out of memory).
 
     matrix: also each pose as a 4x4 matrix; single: JSON gives one document, not a list;
     drawn: (variable names, values [rows, variables], seed) of random configurations, written
     with each pose (full precision: ``--q NAME=VALUE`` with them gives the pose again)
     """
+    stream = stream or sys.stdout
+    if output_format == "json":
+        from urdftool.report.json_output import write_json, write_json_list
+
+        documents = _documents(result, matrix, drawn)
+        if single:
+            write_json(next(documents), stream)
+        else:
+            write_json_list(documents, stream)
+    elif output_format == "csv":
+        _csv(result, matrix, stream, drawn)
+    else:
+        _text(result, matrix, drawn)
+
+
+def _documents(result, matrix: bool, drawn):
+    """Each configuration's JSON document, a block's computed at a time."""
     from urdftool.kinematics.fk import pose_components
 
-    stream = stream or sys.stdout
-    positions, rpys, quaternions = pose_components(result.matrices)
-    if output_format == "json":
-        from urdftool.report.json_output import write_json
-
+    for start, matrices in result.blocks():
+        positions, rpys, quaternions = pose_components(matrices)
         # Python floats in one conversion per array, not three per pose
         lists = [positions.tolist(), rpys.tolist(), quaternions.tolist(),
-                 result.matrices.tolist() if matrix else None]
-        documents = [{"base": result.base, "frames": [
-            _frame_entry(name, lists[0][row][k], lists[1][row][k], lists[2][row][k],
-                         lists[3][row][k] if matrix else None)
-            for k, name in enumerate(result.frames)]} for row in range(len(positions))]
-        if drawn is not None:
-            names, values, seed = drawn
-            for row, document in enumerate(documents):
+                 matrices.tolist() if matrix else None]
+        for row in range(len(positions)):
+            document = {"base": result.base, "frames": [
+                _frame_entry(name, lists[0][row][k], lists[1][row][k], lists[2][row][k],
+                             lists[3][row][k] if matrix else None)
+                for k, name in enumerate(result.frames)]}
+            if drawn is not None:
+                names, values, seed = drawn
                 document["seed"] = seed
-                document["q"] = {name: float(v) for name, v in zip(names, values[row])}
-        write_json(documents[0] if single else documents, stream)
-    elif output_format == "csv":
-        _csv(result, positions, rpys, quaternions, matrix, stream, drawn)
-    else:
-        _text(result, positions, rpys, quaternions, matrix, drawn)
+                document["q"] = {name: float(v) for name, v in zip(names, values[start + row])}
+            yield document
 
 
 def _frame_entry(name, position, rpy, quaternion, matrix) -> dict:
@@ -67,11 +80,12 @@ def _drawn_words(drawn, row: int) -> str:
                     for name, v in zip(names, values[row]))
 
 
-def _csv(result, positions, rpys, quaternions, matrix, stream, drawn=None) -> None:
+def _csv(result, matrix, stream, drawn=None) -> None:
     import csv
 
     import numpy as np
 
+    from urdftool.kinematics.fk import pose_components
     from urdftool.report.escape import csv_cell
 
     header = ["row", "base", "frame", "x", "y", "z", "roll", "pitch", "yaw",
@@ -82,64 +96,71 @@ def _csv(result, positions, rpys, quaternions, matrix, stream, drawn=None) -> No
         header += [csv_cell(name) for name in drawn[0]]  # the values drawn, a column each
     writer = csv.writer(stream, lineterminator="\n")
     writer.writerow(header)
-    numbers = np.concatenate([positions, rpys, quaternions], axis=-1)
-    if matrix:
-        numbers = np.concatenate([numbers, result.matrices[..., :3, :].reshape(
-            numbers.shape[:2] + (12,))], axis=-1)
     base, names = csv_cell(result.base), [csv_cell(name) for name in result.frames]
-    drawn_values = (drawn[1] + 0.0).tolist() if drawn is not None else None
-    # Python floats in one conversion, zeros unsigned at once (+ 0.0): repr of each is then
-    # numbers.exact's text, without a call per cell (a million cells at 10,000 rows)
-    for row, poses in enumerate((numbers + 0.0).tolist()):
-        joints = list(map(repr, drawn_values[row])) if drawn is not None else []
-        writer.writerows([row + 1, base, name, *map(repr, pose), *joints]
-                         for name, pose in zip(names, poses))
+    for start, matrices in result.blocks():
+        numbers = np.concatenate(pose_components(matrices), axis=-1)
+        if matrix:
+            numbers = np.concatenate([numbers, matrices[..., :3, :].reshape(
+                numbers.shape[:2] + (12,))], axis=-1)
+        drawn_values = (drawn[1][start:start + len(matrices)] + 0.0).tolist() \
+            if drawn is not None else None
+        # Python floats in one conversion, zeros unsigned at once (+ 0.0): repr of each is then
+        # numbers.exact's text, without a call per cell (a million cells at 10,000 rows)
+        for row, poses in enumerate((numbers + 0.0).tolist()):
+            joints = list(map(repr, drawn_values[row])) if drawn is not None else []
+            writer.writerows([start + row + 1, base, name, *map(repr, pose), *joints]
+                             for name, pose in zip(names, poses))
 
 
 HEADERS = ["frame", "x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw [rad]",
            "qx [-]", "qy [-]", "qz [-]", "qw [-]"]
 
 
-def _text(result, positions, rpys, quaternions, matrix, drawn=None) -> None:
+def _text(result, matrix, drawn=None) -> None:
     import numpy as np
 
+    from urdftool.kinematics.fk import pose_components
     from urdftool.report.escape import markup, text
 
     # plain past a long table's worth of rows in all: 10,000 configurations are 10,000 tables
-    plain = plain_tables(len(result.frames) * len(positions))
+    plain = plain_tables(len(result.frames) * result.rows)
     console = None if plain else wide_console()
     columns = len(HEADERS) - 1
-    # every number of every table formatted at once (numbers.fixed_texts), as fixed() would
-    cells = fixed_texts(np.concatenate([positions, rpys, quaternions], axis=-1).ravel().tolist())
     per_row = columns * len(result.frames)
-    if matrix:  # 16 numbers a frame, formatted at once too; the names escaped once
-        entries = fixed_texts(result.matrices.ravel().tolist())
-        names = [text(name) for name in result.frames]
-    for row in range(len(positions)):
-        title = f"poses relative to {result.base}" + (
-            f" (configuration {row + 1})" if len(positions) > 1 else "")
-        start = row * per_row
-        rows = [[name, *cells[start + k * columns:start + (k + 1) * columns]]
-                for k, name in enumerate(result.frames)]
-        drawn_line = None if drawn is None else (
-            f"configuration {row + 1} (--random, --seed {drawn[2]}): {_drawn_words(drawn, row)}")
-        if plain:
-            out = sys.stdout
+    names = [text(name) for name in result.frames] if matrix else None  # escaped once
+    for start, matrices in result.blocks():
+        # every number of a block's tables formatted at once (numbers.fixed_texts), as fixed()
+        # would
+        cells = fixed_texts(np.concatenate(pose_components(matrices), axis=-1).ravel().tolist())
+        if matrix:  # 16 numbers a frame, formatted at once too
+            entries = fixed_texts(matrices.ravel().tolist())
+        for at in range(len(matrices)):
+            row = start + at
+            title = f"poses relative to {result.base}" + (
+                f" (configuration {row + 1})" if result.rows > 1 else "")
+            first = at * per_row
+            rows = [[name, *cells[first + k * columns:first + (k + 1) * columns]]
+                    for k, name in enumerate(result.frames)]
+            drawn_line = None if drawn is None else (
+                f"configuration {row + 1} (--random, --seed {drawn[2]}): "
+                f"{_drawn_words(drawn, row)}")
+            if plain:
+                out = sys.stdout
+                if drawn_line is not None:
+                    out.write(text(drawn_line) + "\n")
+                write_table(out, title, HEADERS, rows)
+                if matrix:
+                    _plain_matrices(names, entries, at * 16 * len(names), out)
+                continue
             if drawn_line is not None:
-                out.write(text(drawn_line) + "\n")
-            write_table(out, title, HEADERS, rows)
+                console.print(markup(drawn_line), soft_wrap=True)
+            print_table(console, title, HEADERS, rows)
             if matrix:
-                _plain_matrices(names, entries, row * 16 * len(names), out)
-            continue
-        if drawn_line is not None:
-            console.print(markup(drawn_line), soft_wrap=True)
-        print_table(console, title, HEADERS, rows)
-        if matrix:
-            for k, name in enumerate(result.frames):
-                console.print(f"{markup(name)}:")
-                at = (row * len(result.frames) + k) * 16
-                for line in range(4):
-                    console.print(_matrix_line(entries[at + 4 * line:at + 4 * line + 4]))
+                for k, name in enumerate(result.frames):
+                    console.print(f"{markup(name)}:")
+                    entry = (at * len(result.frames) + k) * 16
+                    for line in range(4):
+                        console.print(_matrix_line(entries[entry + 4 * line:entry + 4 * line + 4]))
 
 
 def _matrix_line(texts) -> str:

@@ -47,16 +47,18 @@ def as_dict(chain, solution, given=None) -> dict:
             "q_words": q_words(chain, solution, given)}
 
 
-def text(chain, solutions, given=None) -> str:
-    """One block per target: joint values, residuals, limits hit, the words for ``fk``."""
+def text(chain, solutions, given=None):
+    """One block per target: joint values, residuals, limits hit, the words for ``fk``; a
+    target's lines at a time (``solutions``: an iterable, each solution written as it comes),
+    then how many were solved."""
     width = max((len(_text(v.name)) for v in chain.variables), default=5)
     tip, base = _text(chain.tip), _text(chain.base)
-    lines = []
+    count = solved = 0
     for solution in solutions:
         head = f"{_text(solution.target.name)}: " if solution.target.name else ""
         mode = "position only" if solution.target.rotation is None else "position and orientation"
-        lines.append(f"{head}{tip} relative to {base} ({mode}, {solution.method}): "
-                     + ("solved" if solution.solved else "UNREACHABLE"))
+        lines = [f"{head}{tip} relative to {base} ({mode}, {solution.method}): "
+                 + ("solved" if solution.solved else "UNREACHABLE")]
         lines.append(f"  {'joint':{width}s} {'value':>12s} {'[deg]':>9s} {'lower':>9s} "
                      f"{'upper':>9s}")
         for variable, value in zip(chain.variables, solution.x):
@@ -73,14 +75,16 @@ def text(chain, solutions, given=None) -> str:
             lines.append(f"  closest pose reached: {_pose(solution.pose)}")
             lines.append(f"  why: {_text(solution.reason)}")
         lines.append(f"  fk: {_text(q_words(chain, solution, given))}")
-        lines.append("")
-    solved = sum(s.solved for s in solutions)
-    if len(solutions) > 1:
-        lines.append(f"{solved} of {len(solutions)} targets solved")
-    return "\n".join(lines).rstrip("\n") + "\n"
+        yield ("\n" if count else "") + "\n".join(lines) + "\n"  # (a blank line between)
+        count, solved = count + 1, solved + bool(solution.solved)
+    if count > 1:
+        yield f"\n{solved} of {count} targets solved\n"
+    elif not count:
+        yield "\n"
 
 
-def csv_text(chain, solutions) -> str:
+def csv_text(chain, solutions):
+    """The header, then a target's row at a time (``solutions``: an iterable)."""
     import csv
     import io
 
@@ -93,13 +97,18 @@ def csv_text(chain, solutions) -> str:
                          int(solution.solved),
                          exact(solution.position_error), exact(solution.rotation_error),
                          solution.iterations, *(exact(v) for v in solution.x)])
-    return stream.getvalue()
+        yield stream.getvalue()
+        stream.seek(0)
+        stream.truncate()
+    yield stream.getvalue()  # (the header alone, without targets)
 
 
-def reach_text(chain, solutions, tolerance: float) -> str:
-    """``--check-reach``: one line per target, reachable or not, with its residual."""
-    lines = [f"reach of {_text(chain.tip)} relative to {_text(chain.base)} "
-             f"({counted(len(chain.variables), 'joint')}), tolerance {number(tolerance, 6)}:"]
+def reach_text(chain, solutions, tolerance: float):
+    """``--check-reach``: one line per target, reachable or not, with its residual, a line at a
+    time (``solutions``: an iterable), then how many are reachable."""
+    yield (f"reach of {_text(chain.tip)} relative to {_text(chain.base)} "
+           f"({counted(len(chain.variables), 'joint')}), tolerance {number(tolerance, 6)}:\n")
+    count = reached = 0
     for solution in solutions:
         x, y, z = solution.target.position
         verdict = "reachable" if solution.solved else "UNREACHABLE"
@@ -107,7 +116,6 @@ def reach_text(chain, solutions, tolerance: float) -> str:
                 f"{_verdict(solution)}")
         if not solution.solved:
             line += f"; {_text(solution.reason)}"
-        lines.append(line)
-    reached = sum(s.solved for s in solutions)
-    lines.append(f"{reached} of {len(solutions)} targets reachable")
-    return "\n".join(lines) + "\n"
+        yield line + "\n"
+        count, reached = count + 1, reached + bool(solution.solved)
+    yield f"{reached} of {count} targets reachable\n"

@@ -3,6 +3,7 @@ documents that analysis commands (collisions, dh, dynamics, fk, inertia) print."
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import re
@@ -12,7 +13,7 @@ WIDTH = 100  # a value whose JSON fits on a line this wide is written on one lin
 RECORD = 4000  # an object in a list (a finding, a link's pose) up to this long is one line too
 
 
-def dumps(data) -> str:
+def dumps(data, indent: str = "", in_list: bool = False) -> str:
     """``data`` as indented JSON: a list or object that fits in :data:`WIDTH` columns stays on
     one line, and so does an object in a list up to :data:`RECORD` characters (a record a line);
     a longer one has an item a line. Each line is encoded by json's C encoder
@@ -20,20 +21,22 @@ def dumps(data) -> str:
     float that is infinite or NaN (a declared mass of ``inf``, a pose past what a float holds)
     is written null, which every reader takes (``NaN``/``Infinity`` are no JSON: `inertia -f
     json` of such a robot was refused by every strict reader). No zero is signed: ``-0.0`` is
-    written ``0.0`` (:func:`urdftool.numbers.exact`)."""
+    written ``0.0`` (:func:`urdftool.numbers.exact`). ``indent``, ``in_list``: the text of
+    ``data`` as a member of a list so indented (:func:`write_json_list`); each cleaning is of
+    one value, so a list's members cleaned one by one are the list cleaned whole."""
     try:
-        text = _dumps(data, _ENCODE)
+        text = _dumps(data, _ENCODE, indent, in_list)
     except ValueError:  # (rare: looked for by the encoder, and only then the data cleaned)
         data = _finite(data)
-        text = _dumps(data, _ENCODE)
+        text = _dumps(data, _ENCODE, indent, in_list)
     if _signed_zero(text):  # as numbers.exact writes a float: looked for, then cleaned
         data = _unsigned(data)
-        text = _dumps(data, _ENCODE)
+        text = _dumps(data, _ENCODE, indent, in_list)
     # json writes a surrogate code point (a file name's undecodable byte, a YAML "\\ud800") as
     # an escape no strict reader takes (I-JSON, RFC 7493; SARIF uploads, serde, Go): rare, so
     # looked for in the text, and only then the data written again as :func:`named` spells it
-    return _dumps(_whole(data), _ENCODE) if _NOT_TEXT_ESCAPE in text or "\\ufffd" in text \
-        else text
+    return _dumps(_whole(data), _ENCODE, indent, in_list) \
+        if _NOT_TEXT_ESCAPE in text or "\\ufffd" in text else text
 
 
 def line(data) -> str:
@@ -136,7 +139,7 @@ def _whole(value):
     return value
 
 
-def _dumps(data, encode) -> str:
+def _dumps(data, encode, indent: str = "", in_list: bool = False) -> str:
     parts: list[str] = []
 
     def write(value, indent: str, in_list: bool = False) -> None:
@@ -165,7 +168,7 @@ def _dumps(data, encode) -> str:
                 write(member, inner, in_list=True)
             parts.append(f"\n{indent}]")
 
-    write(data, "")
+    write(data, indent, in_list)
     return "".join(parts)
 
 
@@ -195,6 +198,29 @@ def write_json(data, stream=None) -> None:
     """``data`` as :func:`dumps` writes it and a newline on ``stream`` (default: standard output),
     in one write (``json.dump`` writes token by token)."""
     (stream or sys.stdout).write(dumps(data) + "\n")
+
+
+def write_json_list(items, stream=None) -> None:
+    """The list of ``items`` (an iterable) as :func:`write_json` writes it, each member written
+    as it comes: a list of thousands of large documents (``fk --q-file -f json``) is never held,
+    nor its text. A list short enough for one line is written whole, as there: the members
+    are held until their least length (:func:`_least_length`, counted as :func:`_dumps` counts
+    it) is past :data:`WIDTH`."""
+    stream = stream or sys.stdout
+    held, total = [], 0
+    items = iter(items)
+    for item in items:
+        held.append(item)
+        total += 2 + _least_length(item, WIDTH - total)
+        if total > WIDTH:
+            break
+    else:
+        write_json(held, stream)
+        return
+    stream.write("[")
+    for number, item in enumerate(itertools.chain(held, items)):
+        stream.write(f"{',' if number else ''}\n  " + dumps(item, "  ", in_list=True))
+    stream.write("\n]\n")
 
 
 # a number token -0.0 (json writes a float as repr does); in a string too, which only costs the
