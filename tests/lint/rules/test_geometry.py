@@ -668,3 +668,26 @@ def test_a_mesh_format_another_simulator_reads_is_said_to_be_its(tmp_path):
     assert severity == Severity.WARNING and "Drake reads it" in message, message
     [(severity, message)] = _u407(tmp_path / "robot.urdf", "bowl.mesh", "U410")
     assert message.endswith("; not opened"), message
+
+
+def test_a_relative_mesh_under_a_folder_not_beside_the_robot_is_not_certainly_missing(tmp_path):
+    """UWSim's scene URDFs (uji-ros-pkg/underwater_simulation) write
+    ``robot/GIRONA500/g500_March11.osg``: UWSim resolves it on its data path (~/.uwsim/data or
+    --dataPath), where no 'robot/' is beside the scene file nor holds a mesh anywhere in the
+    repository; the 40 U408 errors were false. A warning saying so; a path anchored at the file
+    (``../``, ``./``), under a folder that is beside it, or into a folder name the repository's
+    meshes are in (Unitree's Inspire hand's ``meshes/...``: a wrong path) keeps the error."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    scenes = tmp_path / "data" / "scenes"
+    scenes.mkdir(parents=True)
+    [(severity, message)] = _u407(scenes / "robot.urdf", "robot/GIRONA500/hull.stl", "U408")
+    assert severity == Severity.WARNING and "no folder 'robot' is beside" in message, message
+    _stl(tmp_path / "hand" / "meshes" / "palm.stl")  # (a folder of that name holds meshes)
+    [(severity, message)] = _u407(scenes / "robot.urdf", "meshes/hull.stl", "U408")
+    assert severity == Severity.ERROR and "not certain" not in message, message
+    _stl(scenes / "meshes" / "other.stl")
+    for uri in ("meshes/hull.stl", "../scenes/meshes/hull.stl", "./robot/hull.stl"):
+        [(severity, message)] = _u407(scenes / "robot.urdf", uri, "U408")
+        assert severity == Severity.ERROR and "not certain" not in message, (uri, message)

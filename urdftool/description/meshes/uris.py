@@ -351,7 +351,35 @@ def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | 
                                       "put there later (a tool, a download, a build step or a "
                                       "per-robot calibration fills it)", certain=False,
                            kept_empty=True)
+    searched = "" if windows or hint else _on_a_search_path(uri, base)
+    if searched:
+        return MeshProblem("missing", f"{said}: not certain: {searched}", certain=False)
     return replace(found, message=said + hint) if windows or hint else found
+
+
+def _on_a_search_path(uri: str, base: str) -> str:
+    """Why mesh ``uri``, missing from ``base`` (the robot file's folder), may still be found,
+    when it is a relative path with no scheme that neither starts with ``./`` or ``../`` nor
+    names a folder that is beside the robot file: UWSim's scene URDFs write
+    ``robot/GIRONA500/g500_March11.osg``, which UWSim looks for on its data path
+    (``~/.uwsim/data``, downloaded on its first run, or ``--dataPath``), as a loader given a
+    search path does (PyBullet's ``setAdditionalSearchPath``), when the repository holds no
+    mesh in a folder of that name anywhere (the tree is another's: a download, a data
+    package). "" otherwise: a path anchored at the file, one whose first folder is there (the
+    file missing from it), or one into a folder name the repository's meshes are in (Inspire
+    hand's ``meshes/...`` where the hand's meshes are in another ``meshes/``: a wrong path)."""
+    if "://" in uri or "\\" in uri or os.path.isabs(uri) or "/" not in uri:
+        return ""
+    first = uri.split("/", 1)[0]
+    if first in ("", ".", "..") or kind_of(os.path.join(base, first), follow=False):
+        return ""
+    root = os.fspath(_real(containment_root(Path(base))))
+    if any(first in folder.split(os.sep) for folder in _mesh_folders(root)):
+        return ""
+    return (f"no folder '{first}' is beside the robot file nor holds any of the repository's "
+            "meshes, so the path names a file on a loader's data or search path (UWSim's "
+            "~/.uwsim/data or --dataPath, PyBullet's setAdditionalSearchPath), not beside the "
+            "file")
 
 
 def _git_ignored(path: str) -> str:

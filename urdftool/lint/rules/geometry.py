@@ -451,6 +451,10 @@ def mesh_not_found(robot):
     A **warning** for a file the repository's ``.gitignore`` ignores (audibot's meshes, which
     its CMakeLists.txt unpacks from an archive; K-Scale's, which its tools download): no clone
     has it, and the message names the pattern; it is there only where something puts it.
+    A **warning**, too, for a relative path with no scheme into a folder that is not beside
+    the robot file and holds none of the repository's meshes (UWSim's
+    ``robot/GIRONA500/hull.osg``, found on its data path ``~/.uwsim/data``; a YCB object's
+    ``ycb/NAME/...``): a loader given a data or search path finds it there.
 
     The message names where the repository has the file: beside it in other capitals, or,
     when the folder it was looked for in holds no mesh at all (the folder is wrong, not the
