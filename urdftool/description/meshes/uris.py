@@ -339,11 +339,8 @@ def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | 
     hint = "" if windows else _elsewhere(_real(Path(path)), base)
     if located.doubt:  # (said "not found in the source tree": _checked)
         return MeshProblem("missing", f"{said}; {located.doubt}{hint}", certain=False)
-    ignored = _git_ignored(path)
-    if ignored:
-        return MeshProblem("missing", f"{said}{hint}: not certain: {ignored}, so no clone has "
-                                      "it: it is there only where a build step, a download or "
-                                      "a tool puts it", certain=False)
+    # a folder kept empty first: it says the files are put there later, which a .gitignore
+    # only suggests (a file ignored by mistake is never supplied), so it is the note
     kept = _kept_empty(os.path.dirname(path))
     if kept:
         return MeshProblem("missing", f"{said}{hint}: not certain: its folder holds only "
@@ -351,6 +348,11 @@ def _doubted(uri: str, found: Path | MeshProblem, located, base: str) -> Path | 
                                       "put there later (a tool, a download, a build step or a "
                                       "per-robot calibration fills it)", certain=False,
                            kept_empty=True)
+    ignored = _git_ignored(path)
+    if ignored:
+        return MeshProblem("missing", f"{said}{hint}: not certain: {ignored}, so no clone has "
+                                      "it: it is there only where a build step, a download or "
+                                      "a tool puts it", certain=False)
     searched = "" if windows or hint else _on_a_search_path(uri, base)
     if searched:
         return MeshProblem("missing", f"{said}: not certain: {searched}", certain=False)
