@@ -387,7 +387,8 @@ def test_a_macro_call_giving_a_parameter_it_lacks_names_those_it_takes(tmp_path)
                         '  <xacro:macro name="arm" params="prefix mock_hardware:=^|false">'
                         '<link name="${prefix}a"/></xacro:macro>\n'
                         '  <xacro:arm prefix="r1_" use_mock_hardware="true"/>\n</robot>\n')
-    said, _, taken = error.message.partition("; the macro called here takes no parameter of that name: ")
+    said, _, taken = error.message.partition("; the macro called here ('arm') takes no "
+                                             "parameter of that name: ")
     assert (said, taken, error.location.line) == (
         'Invalid parameter "use_mock_hardware"',
         "did you mean 'mock_hardware'? available parameters: mock_hardware, prefix", 3)
@@ -399,7 +400,8 @@ def test_a_macro_call_lacking_a_parameter_says_what_it_lacks(tmp_path):
     error = _load_error(tmp_path, '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
                         '  <xacro:macro name="arm" params="prefix velocity"><link name="${prefix}a"/>'
                         '</xacro:macro>\n  <xacro:arm prefix="r1_"/>\n</robot>\n')
-    assert error.message == ('Undefined parameters [velocity]: the macro called here has velocity '
+    assert error.message == ("Undefined parameters [velocity]: the macro called here ('arm') has "
+                             'velocity '
                              'without a default, and the call gives it no value; pass '
                              'velocity="..."'), error.message
     assert error.location.line == 3

@@ -1059,7 +1059,8 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
     lacking = _UNDEFINED_PARAMETERS.fullmatch(message)
     if lacking:  # xacro names the parameters, not what they lack
         names = [name.strip() for name in lacking.group(1).split(",") if name.strip()]
-        message += (f": the macro called here has {', '.join(names)} without a default, and the "
+        message += (f": the macro called here{_called_macro_name(error)} has "
+                    f"{', '.join(names)} without a default, and the "
                     f"call gives {'it' if len(names) == 1 else 'them'} no value; pass "
                     f"{names[0] if names else 'it'}=\"...\"")
     later = ""
@@ -1073,7 +1074,8 @@ def _as_failure(session: _Session, error: Exception, path: Path, doc=None) -> Xa
                             repeated=getattr(message, "repeated", ()))
     invalid = _INVALID_PARAMETER.fullmatch(message)
     if invalid:  # xacro names the attribute, not what the macro takes
-        message += "; the macro called here takes no parameter of that name: " + available(
+        message += (f"; the macro called here{_called_macro_name(error)} takes no parameter of "
+                    "that name: ") + available(
             "parameters", invalid.group(1), _called_macro_params(error))
     return XacroFailure("arg" if argument else "xacro", str(message), where, subject=argument,
                         whatever_args=bool(invalid) and not _under_condition(error.__traceback__),
@@ -1136,6 +1138,21 @@ def _under_condition(traceback) -> bool:
 
 _UNDEFINED_PARAMETERS = re.compile(r"Undefined parameters \[(.*)\]")
 _INVALID_PARAMETER = re.compile(r'Invalid parameter "(.*)"')
+
+
+def _called_macro_name(error: Exception) -> str:
+    """`` ('NAME')``, the name of the macro a call failed in (xacro's
+    ``XacroException(..., macro=m)``: its definition, ``m.body``, says it), or "" when unknown:
+    the line points at the call, and a file calling many macros there (one per line, or a
+    call spread over lines) left the reader to find which."""
+    cause = error
+    while cause is not None:
+        for macro in getattr(cause, "macros", None) or ():
+            body = getattr(macro, "body", None)
+            name = body.getAttribute("name") if hasattr(body, "getAttribute") else ""
+            return f" ('{name}')" if isinstance(name, str) and name else ""
+        cause = getattr(cause, "exc", None) or cause.__context__
+    return ""
 
 
 def _called_macro_params(error: Exception) -> list[str]:
