@@ -60,7 +60,7 @@ def read_unmerged(path: Path, data: bytes, max_triangles: int = MAX_TRIANGLES):
     if suffix != ".stl":
         return None
     raw = _stl_binary(data)
-    if raw is None and len(data) != _HEADER + _RECORD * _count(data):
+    if raw is None and not binary_stl(data):
         raw = _stl_ascii(data)  # trimesh's order: binary when the length fits, else ASCII
     if raw is None:
         return None
@@ -75,11 +75,16 @@ def _count(data: bytes) -> int:
     return int.from_bytes(data[80:84], "little") if len(data) >= _HEADER else -1
 
 
+def binary_stl(data: bytes) -> bool:
+    """Whether an STL file's ``data`` is read as binary, as trimesh decides: its header's
+    triangle count fits its length (else it is read as ASCII)."""
+    return len(data) >= _HEADER and len(data) == _HEADER + _RECORD * _count(data)
+
+
 def _stl_binary(data: bytes):
     import numpy as np
 
-    count = _count(data)
-    if count <= 0 or len(data) != _HEADER + _RECORD * count:
+    if _count(data) <= 0 or not binary_stl(data):
         return None
     # the corners are read in one copy, straight to float64 (the normals and attributes are
     # skipped by the record's layout); the (count, 3, 3) array is contiguous, so it is

@@ -231,8 +231,7 @@ def _damped_again(hessian: np.ndarray, gradient: np.ndarray) -> np.ndarray:
     100 m off the tip (``--point``), J^T J is 1e4 and the damping vanishes beside it; a limb
     of fewer position rows than joints is then singular to the bit, and the solve was NaN
     (numpy's "invalid value" warning, and a seed spent on steps of NaN)."""
-    scale = float(np.abs(np.diagonal(hessian)).max(initial=0.0))
-    damped = hessian + _DAMPING * max(scale, 1.0) * np.eye(len(hessian))
+    damped = hessian + _scaled_damping(hessian)  # (its diagonal: squares, and the damping)
     step = _solve(damped, gradient)
     return step if np.isfinite(step).all() else np.zeros_like(gradient)
 

@@ -271,8 +271,10 @@ def scene_problem(path: Path, data: bytes) -> str | None:
                     f"and join, over {MAX_TEXT_PIECES}")
         return None
     if suffix == ".stl":
-        if len(data) >= 84 and len(data) - 84 == 50 * int.from_bytes(data[80:84], "little"):
-            return None  # binary, as trimesh tells (the header's count fits the length): one mesh
+        from urdftool.description.mesh_arrays import binary_stl
+
+        if binary_stl(data):
+            return None  # one mesh to trimesh, whatever its bytes spell
         solids = data.lower().count(b"endsolid")  # (as trimesh finds them, in any case)
         if solids > MAX_TEXT_PIECES:
             return (f"it holds {solids} solids (endsolid), each a mesh of its own to build and "
