@@ -585,3 +585,31 @@ def test_a_browsers_copy_takes_what_drake_alone_takes_as_an_error(tmp_path):
     assert findings["U105"].severity == Severity.ERROR
     assert findings["U202"].severity == Severity.WARNING
     assert findings["U202"].message.startswith("if urdfdom loads it (a web page reads it: ")
+
+
+@pytest.mark.parametrize("code, body", [
+    ("U203", '<link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+             '<axis xyz="0 0 1"/><limit lower="0" upper="1"/></joint>'),
+    ("U405", ""),
+])
+def test_each_marked_shape_is_a_warning_in_a_file_drake_reads_and_an_error_in_ros(code, body,
+                                                                                 tmp_path):
+    """U203's <limit> without effort or velocity, U405's unnamed visual material
+    (RobotLocomotion/models' table_top): warnings naming Drake in Drake's file; errors in the
+    same file of a catkin package."""
+    text = ('<robot name="r" xmlns:drake="http://drake.mit.edu">\n<link name="a"><visual>'
+            '<geometry><box size="1 1 1"/></geometry>\n<material><color rgba="1 0 0 1"/>'
+            f'</material></visual></link>\n{body}\n</robot>\n')
+    if code == "U203":
+        text = text.replace("<material><color rgba=\"1 0 0 1\"/></material>", "")
+    path = tmp_path / "drake" / "r.urdf"
+    path.parent.mkdir()
+    path.write_text(text)
+    (tmp_path / "ros").mkdir()
+    (tmp_path / "ros" / "package.xml").write_text(_CATKIN)
+    (tmp_path / "ros" / "r.urdf").write_text(text)
+    for folder, severity in (("drake", Severity.WARNING), ("ros", Severity.ERROR)):
+        [finding] = [f for f in load_and_check(str(tmp_path / folder / "r.urdf"),
+                                               CheckOptions()).findings if f.code == code]
+        assert finding.severity == severity, finding
+        assert finding.message.startswith("if urdfdom loads it (Drake") == (folder == "drake")
