@@ -64,7 +64,7 @@ def test_without_dot_the_dot_source_is_written_and_explained(run_cli, bad, tmp_p
                                                               monkeypatch):
     monkeypatch.setenv("PATH", str(tmp_path / "empty"))
     result = run_cli("graph", bad, "-o", tmp_path / "tree.svg")
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert "'dot' program is not installed" in result.stderr
     assert f"wrote the DOT source to {tmp_path / 'tree.dot'}" in result.stderr
     assert not (tmp_path / "tree.svg").exists()
