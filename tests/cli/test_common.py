@@ -269,6 +269,77 @@ def test_a_robot_the_command_cannot_take_is_still_the_robots_error(run_cli, tmp_
     assert "has no collision or visual geometry" in standing.stderr
 
 
+# a chain of three joints reaching 2e7 m out and back: its --textbook form is its table with the
+# sign of two link lengths moved into theta, equal to it up to the rounding at 2e7 m
+FAR_CHAIN = ('<robot name="far"><link name="b"/><link name="l1"/><link name="l2"/>'
+             '<link name="l3"/>' + "".join(
+                 f'<joint name="j{i}" type="revolute"><parent link="{parent}"/>'
+                 f'<child link="l{i}"/><origin xyz="{x} 0 0"/><axis xyz="0 0 1"/>'
+                 '<limit lower="-3" upper="3" effort="1" velocity="1"/></joint>'
+                 for i, parent, x in ((1, "b", 0), (2, "l1", -1e7), (3, "l2", -1e7)))
+             + '</robot>')
+
+
+def _refused_by_design(case: str, tmp_path, monkeypatch) -> str:
+    """The robot of a refusal by design, and what makes the command refuse it."""
+    if case == "too big":  # Pinocchio's data of 300 joints (~1.7 GB) in 1 GiB
+        import resource
+
+        from conftest import synthetic_robot
+
+        limit = resource.getrlimit
+        monkeypatch.setattr(resource, "getrlimit", lambda kind: (
+            1024 ** 3, resource.RLIM_INFINITY) if kind == resource.RLIMIT_AS else limit(kind))
+        return str(synthetic_robot(tmp_path, 301))
+    path = tmp_path / "far.urdf"
+    path.write_text(FAR_CHAIN)
+    if case == "no textbook form":  # (the textbook form always reproduces the table: made
+        # not to, so that the refusal is seen)
+        from urdftool.kinematics import dh
+
+        monkeypatch.setattr(dh, "_reach_tolerance", lambda table: -1.0)
+    else:  # "no Graphviz"
+        monkeypatch.setenv("PATH", str(tmp_path / "empty"))
+    return str(path)
+
+
+@pytest.mark.parametrize("case, words, message", [
+    ("too big", ["ik", "--tip", "l300", *IK], "300 joint variables from 'l0' to 'l300'"),
+    ("too big", ["workspace", "--tip", "l300"], "300 joint variables from 'l0' to 'l300'"),
+    ("too big", ["dynamics"], "300 joint variables"),
+    ("too big", ["dynamics", "--support", "l300"], "300 joint variables"),
+    ("no textbook form", ["dh", "--tip", "l3", "--textbook"],
+     "the textbook form of the table does not reproduce it ("),
+    ("no Graphviz", ["graph", "-o", "OUT.svg"], "'dot' program is not installed"),
+])
+def test_a_request_the_command_refuses_by_design_exits_2_in_every_command(
+        run_cli, tmp_path, monkeypatch, case, words, message):
+    """What a command refuses to compute by its own design, before or instead of an answer
+    (a limb or robot whose Pinocchio data cannot fit the memory allowed, as the size limits
+    --max-matrix-rows and --max-scene-triangles refuse; a --textbook form it cannot vouch for,
+    as an axis with no D-H form; Graphviz missing, as an analysis extra missing) is no answer
+    about the robot: exit 2, said on standard error only, as every usage error. ik, workspace
+    and dynamics exited 1 for the data, dh for the textbook form, graph without Graphviz; a
+    computed negative answer (ik not solving, dynamics' margins, fk --verify) stays 1."""
+    path = _refused_by_design(case, tmp_path, monkeypatch)
+    words = [str(tmp_path / "tree.svg") if word == "OUT.svg" else word for word in words]
+    result = run_cli(words[0], path, *words[1:])
+    assert result.exit_code == 2, result.output
+    assert result.stdout == ""
+    assert message in result.stderr, result.stderr
+
+
+def test_a_textbook_form_far_out_is_vouched_for_at_its_reach(run_cli, tmp_path):
+    """The textbook form's check held the table to the rounding at its base and tool only: a
+    chain reaching 2e7 m out and back (within numbers.MAX_COORDINATE), whose own table dh gives,
+    was refused by --textbook for a difference of 3.7e-9 m, the rounding at 2e7 m."""
+    path = tmp_path / "far.urdf"
+    path.write_text(FAR_CHAIN)
+    result = run_cli("dh", path, "--tip", "l3", "--textbook", "-f", "json")
+    assert result.exit_code == 0, result.output
+    assert [row["a"] for row in json.loads(result.stdout)["joints"]] == [1e7, 1e7, 0.0]
+
+
 def test_a_d_h_table_that_does_not_fit_is_a_usage_error_named_by_its_file(run_cli, tmp_path):
     """A D-H table given to ``fk --dh`` is the user's input, as a --q-file: unreadable, or
     naming a joint the robot lacks, exit 2 with the file named (it was exit 1, as if the

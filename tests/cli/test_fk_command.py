@@ -111,3 +111,25 @@ def test_the_same_bytes_whatever_the_blocks(tmp_path, monkeypatch, options):
         assert outputs[0] == outputs[1] == outputs[2] == outputs[3], output_format
         rows = options.get("random") or 16  # (16 = 5 x 3 + 1 = 3 x 5 + 1: a row left over)
         assert len(outputs[0]) > 100 * rows  # (every row written)
+
+
+def test_one_frame_of_a_long_chain_is_computed_a_block_of_its_joints_at_a_time(tmp_path,
+                                                                               monkeypatch):
+    """A block was sized by the frames written alone, while every joint's pose of its rows is
+    computed and held on the way: 12,000 rows of a 300-joint chain at one --frame were one
+    block of 460 MB. Each block now holds at most POSES_HELD_PER_BLOCK of them, and the poses
+    are the same as in one block."""
+    import numpy as np
+
+    from conftest import synthetic_robot
+    from urdftool.description.load import load
+    from urdftool.kinematics import configuration as config
+
+    model = fk_module.KinematicModel(load(str(synthetic_robot(tmp_path, 101))))
+    configurations = config.random(model.variables, 1000, 3)
+    whole = fk_module.forward_kinematics(model, configurations, ["l100"]).matrices
+    monkeypatch.setattr(fk_module, "POSES_HELD_PER_BLOCK", 50 * 101, raising=False)
+    blocks = fk_module.forward_kinematics_blocks(model, configurations, ["l100"])
+    sizes = [len(poses) for _, poses in blocks.blocks()]
+    assert sum(sizes) == 1000 and max(sizes) <= 50, sizes
+    assert np.array_equal(np.concatenate([poses for _, poses in blocks.blocks()]), whole)

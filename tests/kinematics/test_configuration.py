@@ -173,3 +173,23 @@ def test_a_q_file_value_past_the_farthest_coordinate_is_said_as_the_files(run_cl
     assert result.exit_code == 2, result.output
     assert f"{table}: joint 'l_knee' = 1e+308 is past" in result.output
     assert "--q:" not in result.output
+
+
+def test_a_file_of_numbers_is_converted_a_chunk_of_rows_at_a_time(tmp_path):
+    """Every cell of a --q-file was held as a string at once, then as a float (433 MB for a
+    16 MB file of 12,000 rows of 300 joints): what reading holds now is the text, the table
+    and a chunk of rows, and the table is the one every row at once gives."""
+    import tracemalloc
+
+    names = [f"j{i}" for i in range(300)]
+    rows = [[("0.1", "-0.25", "1", "3e-2")[(r + c) % 4] for c in range(300)] for r in range(4000)]
+    path = tmp_path / "q.csv"
+    path.write_text(",".join(names) + "\n" + "".join(",".join(row) + "\n" for row in rows))
+    tracemalloc.start()
+    try:
+        read, table = config.read_table(str(path), "q-file", "joint")
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert read == names and np.array_equal(table, np.array(rows, dtype=float))
+    assert peak < 4 * table.nbytes, (peak, table.nbytes)  # (every cell at once: 7.6 times)

@@ -64,7 +64,7 @@ def test_without_dot_the_dot_source_is_written_and_explained(run_cli, bad, tmp_p
                                                               monkeypatch):
     monkeypatch.setenv("PATH", str(tmp_path / "empty"))
     result = run_cli("graph", bad, "-o", tmp_path / "tree.svg")
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert "'dot' program is not installed" in result.stderr
     assert f"wrote the DOT source to {tmp_path / 'tree.dot'}" in result.stderr
     assert not (tmp_path / "tree.svg").exists()
@@ -108,3 +108,32 @@ def test_a_link_a_joint_names_but_nobody_defines_is_drawn_as_missing(run_cli, tm
     dot = run_cli("graph", path, "--timeout", "0").stdout
     [node] = [line for line in dot.splitlines() if line.strip().startswith('"ghost" [')]
     assert 'style="dashed"' in node and 'label="ghost\\n(missing)"' in node
+
+
+def test_links_beside_the_tree_are_drawn_apart_as_the_warning_says(run_cli, tmp_path):
+    """A loop of joints no joint from the root reaches (urdfdom drops it; every other command
+    leaves it out, by kinematics.tree.beside_the_tree): graph drew its links and joints as
+    links of the tree, while its warning said they were "left out". They are drawn dashed and
+    grey, labelled as beside the tree, the loop's finding still coloured, and the warning says
+    how they are drawn; the tree itself is drawn as before."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="r"/><link name="x"/><link name="a"/>'
+                    '<link name="b"/>' + "".join(
+                        f'<joint name="{name}" type="fixed"><parent link="{parent}"/>'
+                        f'<child link="{child}"/></joint>'
+                        for name, parent, child in (("j0", "r", "x"), ("j1", "a", "b"),
+                                                    ("j2", "b", "a"))) + "</robot>")
+    result = run_cli("graph", "--timeout", "0", "--max-memory", "0", path)
+    assert result.exit_code == 0, result.output
+    dot = result.stdout
+    for link in ("a", "b"):
+        line = _line(dot, f'"{link}" [')
+        assert 'style="rounded,dashed,filled"' in line, line
+        assert f'label="{link}\\n(beside the tree)"' in line and "urdfdom" in line, line
+    assert 'style="dashed"' in _line(dot, '"a" -> "b"')
+    loop = _line(dot, '"b" -> "a"')
+    assert 'style="dashed"' in loop and "U109" in loop and "#c62828" in loop, loop
+    assert _line(dot, '"r"') == '"r";' and _line(dot, '"r" -> "x"') == \
+        '"r" -> "x" [label="j0\\nfixed"];'
+    assert "2 links beside the tree, which no joint from the root reaches, drawn dashed, " \
+        "apart from the tree" in result.stderr and "left out" not in result.stderr

@@ -230,9 +230,11 @@ def _warn_beside_the_tree(robot, command: str) -> None:
 
     dropped = beside_the_tree(robot)
     if dropped:
+        them = "them" if len(dropped) > 1 else "it"
+        done = f"drawn dashed, apart from the tree, as urdfdom leaves {them} out of its model" \
+            if command == "graph" else f"left out as urdfdom leaves {them} out of its model"
         warn([f"{len(dropped)} link{'s' * (len(dropped) > 1)} beside the tree, which no joint "
-              f"from the root reaches, left out as urdfdom leaves {'them' if len(dropped) > 1 else 'it'} "
-              f"out of its model: {listed(dropped)} ('urdftool check' says why)"])
+              f"from the root reaches, {done}: {listed(dropped)} ('urdftool check' says why)"])
 
 
 def _warn_unread_link(robot) -> None:

@@ -141,7 +141,7 @@ def _pose(robot, values, degrees, srdf, format, render, max_pairs, max_triangles
         scene = scene_model(robot, True, max_triangles).pose(report.q, max_triangles)
         warn(scene.problems)
         colliding = {name for c in report.forbidden for name in (c.link1, c.link2)}
-        write(render, [Layer(scene, highlight=colliding, label=robot.name)])
+        warn(write(render, [Layer(scene, highlight=colliding, label=robot.name)]))
     write_pose(robot.name, report, format, custom=bool(values))
     return 1 if report.forbidden or report.problems else 0  # left out: not established
 

@@ -160,6 +160,6 @@ def _render(old, new, result, path, max_triangles) -> None:
         except OverLimit as error:
             fail_over_limit(error, "--max-scene-triangles")
     warn(scenes[0].problems + scenes[1].problems)
-    write(path, [Layer(scenes[0], tint=OLD, label=f"old: {result.old}"),
-                 Layer(scenes[1], tint=NEW, label=f"new: {result.new}")],
-          PictureOptions(detail=change_detail(result)))
+    warn(write(path, [Layer(scenes[0], tint=OLD, label=f"old: {result.old}"),
+                      Layer(scenes[1], tint=NEW, label=f"new: {result.new}")],
+               PictureOptions(detail=change_detail(result))))

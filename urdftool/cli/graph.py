@@ -37,9 +37,9 @@ def graph(
         return
     try:
         written = write(dot, output)
-    except DotMissing as missing:
+    except DotMissing as missing:  # (a program the install lacks, as an extra: exit 2)
         say(f"urdftool: {dot_missing_advice(missing, output)}", err=True)
-        raise typer.Exit(1)
+        raise typer.Exit(2)
     except (ValueError, OSError, UsageError) as error:
         fail_usage(UsageError(str(error)))
     say(f"wrote {written}", err=True)

@@ -66,8 +66,8 @@ def render(
         scene, warnings = posed(robot, joint_words(q, "--q"), deg, collision,
                                 max_scene_triangles or None)
         warn(warnings + scene.problems)
-        write(output, [Layer(scene, label=robot.name)],
-              PictureOptions(view, dimensions, frames, axes))
+        warn(write(output, [Layer(scene, label=robot.name)],
+                   PictureOptions(view, dimensions, frames, axes)))
     except ConfigError as error:
         fail_config(error, "--q")
     except OverLimit as error:

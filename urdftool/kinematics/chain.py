@@ -237,10 +237,11 @@ def build_chain(robot, base: str | None, tip: str, row: np.ndarray | None = None
     plain = model.nq == model.nv == len(columns) and all(
         (idx_q, idx_v, column, multiplier, offset, unbounded) == (k, k, k, 1.0, 0.0, False)
         for k, (idx_q, idx_v, column, multiplier, offset, unbounded) in enumerate(slots))
-    oversized = oversized_data(model.nv)
-    if oversized:
+    oversized = oversized_data(model.nv, "choose a --base or --tip with fewer joints between "
+                                         "them")
+    if oversized:  # (the question's, as the size limits of the commands: another limb fits)
         raise IKError(oversized.replace("joint variables", f"joint variables from '{base}' "
-                                                          f"to '{tip}'"), robot.root)
+                                                          f"to '{tip}'"), robot.root, asked=True)
     data = model.createData()
     placement = None
     if not moving:

@@ -87,6 +87,10 @@ class _Joint:
 # 110 MB more at the peak, no faster); every pose of a --q-file at once was 1.4 KB a pose with
 # its texts (12,000 rows of a 300-link chain: 5 GB of text tables, past the 2 GiB budget)
 POSES_PER_BLOCK = 1 << 14
+# [poses] computed on the way to them at a time (every joint's, 128 bytes each, no text): 32 MB
+# (12,000 rows of a 300-joint chain at one frame: 0.41 s of CPU; 0.53 s in one block of 460 MB;
+# 2^16 poses a block 0.55 s, 2^14 0.89 s)
+POSES_HELD_PER_BLOCK = 1 << 18
 
 
 @dataclass
@@ -113,28 +117,33 @@ class FKResult:
 class PoseBlocks:
     """The poses of ``frames`` relative to ``base`` for ``rows`` configurations, computed a block
     of rows at a time as they are asked for (:meth:`blocks`): what a writer of every pose holds
-    is one block's, whatever the rows (:data:`POSES_PER_BLOCK`)."""
+    is one block's, whatever the rows (:data:`POSES_PER_BLOCK`). ``held``: the poses
+    ``compute`` holds for each row, the frames' and those it computes them through (every
+    joint's: a block sized by the frames alone held 12,000 rows of a 300-joint chain's poses
+    at once for one --frame, 460 MB)."""
 
     base: str
     frames: list[str]
     rows: int
     warnings: list[str]
     compute: Callable[[int, int], np.ndarray]  # (start, stop) -> [stop - start, frames, 4, 4]
+    held: int = 0
 
     def blocks(self):
         """(first row, poses ``[block rows, frames, 4, 4]``) of consecutive blocks of rows."""
-        for start, stop in block_ranges(self.rows, len(self.frames)):
+        for start, stop in block_ranges(self.rows, len(self.frames), self.held):
             yield start, self.compute(start, stop)
 
 
-def block_ranges(rows: int, frames: int) -> list[tuple[int, int]]:
+def block_ranges(rows: int, frames: int, held: int = 0) -> list[tuple[int, int]]:
     """(start, stop) of consecutive blocks of ``rows`` rows of ``frames`` poses each, at most
     :data:`POSES_PER_BLOCK` poses a block, and never a block of one row of several: numpy's
     product of one row (``[1, 3] @ [3, 16]``, :meth:`KinematicModel._local`) is BLAS's gemv,
     of several its gemm, whose last bits differ (a pose's 17th digit, in JSON and CSV); gemm's
     rows are its rows whatever their number, so blocks of two or more give each row the bits
-    every row at once gives it."""
-    step = max(2, POSES_PER_BLOCK // max(frames, 1))
+    every row at once gives it. ``held``: the poses computed for a row besides (its joints'),
+    at most :data:`POSES_HELD_PER_BLOCK` a block."""
+    step = max(2, min(POSES_PER_BLOCK // max(frames, 1), POSES_HELD_PER_BLOCK // max(held, 1)))
     ranges = [(start, min(start + step, rows)) for start in range(0, rows, step)]
     if len(ranges) > 1 and ranges[-1][1] - ranges[-1][0] == 1:  # (its row to the one before)
         ranges[-2:] = [(ranges[-2][0], rows)]
@@ -547,7 +556,8 @@ def forward_kinematics_blocks(model: KinematicModel, configurations: Configurati
         return np.moveaxis(poses, 0, 1)
 
     return PoseBlocks(base or model.root_frame, [model.links[i] for i in chosen], len(values),
-                      list(configurations.warnings), compute)
+                      list(configurations.warnings), compute,
+                      held=len(model._joints) + len(chosen) + bool(base))
 
 
 def pose_components(matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -61,26 +61,32 @@ def data_size(nv: int) -> int:
     return DATA_BYTES_PER_NV_CUBED * power(nv, 3)
 
 
-def oversized_data(nv: int) -> str | None:
+def oversized_data(nv: int, fewer: str) -> str | None:
     """Why Pinocchio's Data of ``nv`` velocity variables cannot be made (it cannot fit the
-    memory this process may use: its address-space cap, else the machine's), else None. Every
-    command that makes one asks first: a 1,500-joint robot would need ~200 GB and be killed
-    instead of reported; ik and workspace on a 999-joint limb ran out of a 2 GiB budget and
-    advised raising it (to 60 GiB), where dynamics said what this says."""
+    memory this process may use: its address-space cap, else the machine's), else None, with
+    its remedies: ``fewer`` (how the command takes fewer joints; "" when it cannot), and more
+    memory when the cap is the budget's and the machine has it. Every command that makes one
+    asks first: a 1,500-joint robot would need ~200 GB and be killed instead of reported; ik
+    and workspace on a 999-joint limb ran out of a 2 GiB budget and advised raising it (to 60
+    GiB), where dynamics said what this says. A refusal by design, as a size limit checked
+    before the work is: the question's, exit 2 (ik, workspace and dynamics exited 1)."""
     import os
     import resource
 
     from urdftool.budget import format_memory
 
+    machine = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
     cap, _ = resource.getrlimit(resource.RLIMIT_AS)
-    if cap == resource.RLIM_INFINITY:
-        cap = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    capped = cap != resource.RLIM_INFINITY
+    cap = cap if capped else machine
     needed = data_size(nv)
     if needed <= cap // 2:
         return None
+    remedies = [fewer] * bool(fewer) + ["raise --max-memory"] * (capped and needed <= machine // 2)
     return (f"{nv} joint variables: Pinocchio's data (where its algorithms compute) would "
             f"need about {format_memory(needed)} (it grows with the cube of the joints) and "
-            f"this process may use {format_memory(cap)}; analyse a sub-chain (fewer joints)")
+            f"this process may use {format_memory(cap)}" +
+            (f"; {' or '.join(remedies)}" if remedies else ""))
 
 
 def _limits_pinocchio_takes(robot) -> str:

@@ -196,9 +196,9 @@ def build(robot, floating: bool = False, max_rows: int | None = None) -> Model:
                   for joint in mimics_of(robot) if joint in joints}
     except MimicError as error:
         raise DynamicsError(str(error), error.element) from None
-    oversized = oversized_data(model.nv)
-    if oversized:
-        raise DynamicsError(oversized, robot.root)
+    oversized = oversized_data(model.nv, "")
+    if oversized:  # (the question's, as --max-matrix-rows: a size limit before the work)
+        raise DynamicsError(oversized, robot.root, asked=True)
     return Model(model, model.createData(), joints, variables, mimics, root, reductions(robot),
                  multiple)
 

@@ -49,8 +49,15 @@ def findings_by_element(robot, findings) -> dict[tuple[str, str], list]:
 def to_dot(robot, findings=()) -> str:
     """DOT source for ``robot``'s tree; ``findings`` (from check) colour links and joints.
 
-    A link takes the worst severity of the findings at it and at the joint that moves it.
+    A link takes the worst severity of the findings at it and at the joint that moves it. The
+    links beside the tree (:func:`urdftool.kinematics.tree.beside_the_tree`, the one owner
+    every command leaves them out by) and the joints between them are drawn dashed and grey,
+    labelled so: urdfdom's model, and every other command, leaves them out (they were drawn as
+    links of the tree, while the command's warning said they were left out).
     """
+    from urdftool.kinematics.tree import beside_the_tree
+
+    beside = set(beside_the_tree(robot))
     marked = findings_by_element(robot, findings)
     for joint in robot.children("joint"):
         child = joint.find("child")
@@ -64,6 +71,9 @@ def to_dot(robot, findings=()) -> str:
              '  edge [fontname="Helvetica", fontsize=9];']
     for name in robot.links:
         attributes = _colour(marked.get(("link", name)), "color", "fillcolor")
+        if name in beside:
+            attributes = {**BESIDE, **attributes, "label": (name, "(beside the tree)"),
+                          "tooltip": (BESIDE_TOOLTIP, *attributes.get("tooltip", ()))}
         lines.append(f"  {_quote(name)}{_attributes(attributes)};")
     missing = []  # links joints name that the robot does not have: drawn as missing
     for joint in robot.children("joint"):
@@ -81,6 +91,9 @@ def to_dot(robot, findings=()) -> str:
         attributes = {"label": joint_label(joint),
                       **_colour(marked.get(("joint", joint.get("name", ""))), "color",
                                 "fontcolor")}
+        if child.get("link") in beside:  # (its parent too: beside, or the tree would reach it)
+            attributes = {"style": "dashed", "color": BESIDE["color"],
+                          "fontcolor": BESIDE["fontcolor"], **attributes}
         lines.append(f"  {_quote(parent.get('link'))} -> {_quote(child.get('link'))}"
                      f"{_attributes(attributes)};")
     lines.append("}")
@@ -88,6 +101,9 @@ def to_dot(robot, findings=()) -> str:
 
 
 MISSING = {"style": "dashed", "color": "#c62828", "fontcolor": "#c62828"}  # a link not defined
+BESIDE = {"style": "rounded,dashed,filled", "color": "#757575", "fontcolor": "#757575"}
+BESIDE_TOOLTIP = ("beside the tree: no joint from the root reaches it, so urdfdom's model "
+                  "(and every other urdftool command) leaves it out")
 
 
 def joint_label(joint) -> tuple[str, str]:

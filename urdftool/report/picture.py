@@ -40,6 +40,12 @@ OLD, NEW = (0.15, 0.4, 0.85), (0.95, 0.45, 0.05)  # the two sides of a compariso
 AMBIENT = 0.35
 MARGIN = 0.06  # of the picture's size, around the robot
 SVG_MIN_AREA = 0.05  # [px^2] triangles smaller than this are left out of an SVG
+# [pixel tests] of the triangles an SVG layer draws (each tests every pixel of its box of
+# powers of two: 3 passes of the rasteriser order them), past which the layer is drawn as the
+# depth buffer's pixels instead, in one pass as a PNG is (said in the picture and by the
+# command): 2,000 triangles of a mesh overlapping across a 600 x 600 picture (5.6e7 tests, a
+# depth of 50) took 58 s, past the 60 s budget; a robot's meshes at 600 x 600 test ~5e5
+SVG_ORDER_TESTS = 2 ** 25
 
 
 @dataclass(frozen=True)
@@ -310,6 +316,20 @@ def zbuffer(corners, depths, width: int, height: int, keys=None, covered=None):
 _RASTER_CHUNK = 1 << 20  # pixel tests at a time [samples]
 
 
+def raster_tests(corners, width: int, height: int) -> int:
+    """How many pixel centres :func:`zbuffer` tests for the triangles ``corners`` ``[n, 3,
+    2]``: each its box of the picture, rounded up to powers of two across and down."""
+    import numpy as np
+
+    if not len(corners):
+        return 0
+    low = np.maximum(np.floor(corners.min(axis=1) - 0.5) + 1, 0)
+    high = np.minimum(np.floor(corners.max(axis=1) - 0.5), [width - 1, height - 1])
+    span = high - low + 1
+    usable = (span > 0).all(axis=1)
+    return int((2 ** np.ceil(np.log2(span[usable]))).prod(axis=1).sum())
+
+
 def _cover(chunk, box: tuple[int, int], corners, depths, area, low, high, width: int, keys,
            buffer, index, covered) -> None:
     """Rasterise the triangles ``chunk`` (each fits a ``box`` (across, down) of pixels) into
@@ -567,13 +587,21 @@ def svg(layers: list[Layer], options: PictureOptions = PictureOptions()) -> str:
     that order is wrong (parts that cut into each other), the pixels the depth buffer shows.
     Each polygon is outlined in its own colour, so that no background shows through the seams
     a renderer's anti-aliasing leaves between triangles."""
+    return svg_noted(layers, options)[0]
+
+
+def svg_noted(layers: list[Layer], options: PictureOptions = PictureOptions()
+              ) -> tuple[str, list[str]]:
+    """:func:`svg`, and the notes about how it is drawn (written in it as its ``<desc>``
+    too): a layer drawn as pixels (:data:`SVG_ORDER_TESTS`)."""
     check_fits(options.size, len(layers))
     width, height = options.size
     camera = _camera(layers, options.view, width, height)
+    notes: list[str] = []
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
            f'viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="11">',
            f'<rect width="{width}" height="{height}" fill="white"/>']
-    out += _svg_layers(layers, camera)
+    out += _svg_layers(layers, camera, notes)
     inset = None
     if options.detail is not None and len(layers) > 1:
         inset = _inset(layers, camera, _composite(layers, camera)[1], options.detail)
@@ -589,7 +617,7 @@ def svg(layers: list[Layer], options: PictureOptions = PictureOptions()) -> str:
         out.append(f'<svg x="{inset.left}" y="{inset.top}" width="{side}" height="{side}" '
                    f'viewBox="0 0 {side} {side}">')
         out.append(f'<rect width="{side}" height="{side}" fill="white"/>')
-        out += _svg_layers(layers, inset.camera)
+        out += _svg_layers(layers, inset.camera, notes)
         out.append(f'<rect x="0.5" y="0.5" width="{side - 1}" height="{side - 1}" '
                    'fill="none" stroke="black"/>')
         out += [f'<text x="4" y="{13 + 12 * row}">{escape(words)}</text>'
@@ -604,25 +632,32 @@ def svg(layers: list[Layer], options: PictureOptions = PictureOptions()) -> str:
         out.append(f'<rect x="6" y="{6 + 16 * row}" width="12" height="12" fill="{fill}"/>')
         out.append(f'<text x="24" y="{16 + 16 * row}">{escape(layer.label)}</text>')
     out.append("</svg>")
-    return "\n".join(out) + "\n"
+    notes = list(dict.fromkeys(notes))
+    if notes:
+        out.insert(1, f"<desc>{escape(' '.join(notes))}</desc>")
+    return "\n".join(out) + "\n", notes
 
 
-def _svg_layers(layers: list[Layer], camera: _Camera) -> list[str]:
+def _svg_layers(layers: list[Layer], camera: _Camera, notes: list[str]) -> list[str]:
     """Each layer's SVG group as ``camera`` sees it (see :func:`_svg_layer`)."""
     out = []
     for layer in layers:
         opacity = f' opacity="{1 / len(layers):.2f}"' if len(layers) > 1 else ""
         title = f"<title>{escape(layer.label)}</title>" if layer.label else ""
         out.append(f"<g{opacity}>{title}")
-        out += _svg_layer(_project(layer, camera), camera.width, camera.height)
+        out += _svg_layer(_project(layer, camera), camera.width, camera.height, notes)
         out.append("</g>")
     return out
 
 
-def _svg_layer(drawn: _Drawn, width: int, height: int) -> list[str]:
+def _svg_layer(drawn: _Drawn, width: int, height: int, notes: list[str]) -> list[str]:
     """One layer's SVG elements: its triangles that show anywhere (in the depth buffer), in the
     painter's order, then the corrections: runs of pixels where the painter's order shows
-    another colour than the depth buffer, as rectangles drawn without anti-aliasing."""
+    another colour than the depth buffer, as rectangles drawn without anti-aliasing. Only the
+    triangles that show are ordered and painted (the others cannot change a pixel): every
+    triangle went through the rasteriser's three more passes. A layer whose triangles would
+    cost more than :data:`SVG_ORDER_TESTS` pixel tests to order is its depth buffer's pixels
+    (as the corrections are), said in ``notes``."""
     import numpy as np
 
     true = zbuffer(drawn.corners, drawn.depths, width, height)
@@ -631,8 +666,17 @@ def _svg_layer(drawn: _Drawn, width: int, height: int) -> list[str]:
     area = 0.5 * np.abs(one[:, 0] * two[:, 1] - one[:, 1] * two[:, 0])
     visible = np.zeros(len(drawn.corners), dtype=bool)
     visible[true[true >= 0]] = True
-    order = _visibility_order(drawn, true.reshape(-1), width, height)
-    order = order[visible[order] & (area[order] >= SVG_MIN_AREA)]
+    shown = np.flatnonzero(visible & (area >= SVG_MIN_AREA))
+    tests = raster_tests(drawn.corners[shown], width, height)
+    if tests > SVG_ORDER_TESTS:
+        notes.append(f"{len(shown)} triangles that show, overlapping (the rasteriser would test "
+                     f"{tests} pixels to order them, over {SVG_ORDER_TESTS}): drawn as the "
+                     "pixels of the depth buffer, as a PNG is, not as polygons")
+        wanted = _colour_image(drawn, true)
+        return _pixel_runs(wanted, true >= 0)
+    order = shown[_visibility_order(_subset(drawn, shown), _among(true.reshape(-1), shown,
+                                                                 len(drawn.corners)),
+                                    width, height)]
     painted = _painted(drawn, order, width, height)
     # a triangle drawn over one nearer than it (parts that cut into each other) would show
     # its anti-aliased edges there: it is drawn as the pixels where it shows instead
@@ -656,22 +700,44 @@ def _svg_layer(drawn: _Drawn, width: int, height: int) -> list[str]:
     if current is not None:
         out.append("</g>")
     wanted, got = _colour_image(drawn, true), _colour_image(drawn, painted)
-    patches = _runs(wanted, (wanted != got).any(axis=-1))
-    if patches:
-        out.append('<g shape-rendering="crispEdges">')
-        out += [f'<rect x="{x}" y="{y}" width="{w}" height="{h}" fill="#%02x%02x%02x"/>'
-                % colour for x, y, w, h, colour in patches]
-        out.append("</g>")
-    return out
+    return out + _pixel_runs(wanted, (wanted != got).any(axis=-1))
+
+
+def _pixel_runs(image, mask) -> list[str]:
+    """The pixels of ``image`` where ``mask`` is set, as rectangles drawn without
+    anti-aliasing (:func:`_runs`)."""
+    patches = _runs(image, mask)
+    if not patches:
+        return []
+    return ['<g shape-rendering="crispEdges">',
+            *(f'<rect x="{x}" y="{y}" width="{w}" height="{h}" fill="#%02x%02x%02x"/>'
+              % colour for x, y, w, h, colour in patches), "</g>"]
+
+
+def _subset(drawn: _Drawn, which) -> _Drawn:
+    """The triangles ``which`` of ``drawn`` (their indices, in that order)."""
+    return _Drawn(drawn.corners[which], drawn.depths[which], drawn.colours[which],
+                  drawn.owners[which], drawn.links)
+
+
+def _among(shown, which, n: int):
+    """``shown`` (indices of ``n`` triangles, -1 for none) as indices into ``which``; -1 for a
+    triangle not in it."""
+    import numpy as np
+
+    position = np.full(n + 1, -1, dtype=np.int64)  # (the last: -1's)
+    position[which] = np.arange(len(which))
+    return position[shown]
 
 
 def _painted(drawn: _Drawn, order, width: int, height: int):
-    """Which triangle each pixel shows when the triangles ``order`` are drawn in that order."""
+    """Which triangle each pixel shows when the triangles ``order`` are drawn in that order
+    (the others, never drawn, are not rasterised: they showed nowhere)."""
     import numpy as np
 
-    rank = np.full(len(drawn.corners), -np.inf)
-    rank[order] = np.arange(len(order))
-    return zbuffer(drawn.corners, drawn.depths, width, height, keys=rank)
+    painted = zbuffer(drawn.corners[order], drawn.depths[order], width, height,
+                      keys=np.arange(len(order), dtype=float))
+    return np.where(painted >= 0, order[np.maximum(painted, 0)], -1)
 
 
 def _runs(image, mask) -> list[tuple[int, int, int, int, tuple]]:
@@ -702,10 +768,18 @@ def _runs(image, mask) -> list[tuple[int, int, int, int, tuple]]:
     return [tuple(rect) for rect in done]
 
 
-def write(path, layers: list[Layer], options: PictureOptions = PictureOptions()) -> None:
-    """Write ``path`` as PNG or SVG by its suffix; PlotError for another suffix."""
-    write_by_suffix(path, {".png": lambda: png(layers, options),
-                           ".svg": lambda: svg(layers, options)})
+def write(path, layers: list[Layer], options: PictureOptions = PictureOptions()) -> list[str]:
+    """Write ``path`` as PNG or SVG by its suffix; PlotError for another suffix. Returns the
+    notes on how it is drawn (:func:`svg_noted`), for the command to say."""
+    notes: list[str] = []
+
+    def noted_svg() -> str:
+        text, said = svg_noted(layers, options)
+        notes.extend(said)
+        return text
+
+    write_by_suffix(path, {".png": lambda: png(layers, options), ".svg": noted_svg})
+    return notes
 
 
 def write_by_suffix(path, drawings: dict) -> None:
