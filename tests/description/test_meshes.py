@@ -23,11 +23,25 @@ def _robot(tmp_path, filename="m.stl"):
 
 def test_binary_stl_triangle_count_read_from_header(tmp_path):
     path = tmp_path / "big.stl"
-    path.write_bytes(b"x" * 80 + struct.pack("<I", 5_000_000))
-    assert triangle_count(path) == 5_000_000
+    path.write_bytes(b"x" * 80 + struct.pack("<I", 3_000) + bytes(50 * 3_000))
+    assert triangle_count(path) == 3_000
+    robot = _robot(tmp_path, "big.stl")
+    robot.mesh_limits = MeshLimits(max_triangles=2_000)
     with pytest.raises(MeshProblem) as error:
-        load_mesh(_robot(tmp_path, "big.stl"), "big.stl")
+        load_mesh(robot, "big.stl")
     assert error.value.kind == "too-large"
+
+
+def test_a_binary_stl_cut_short_is_counted_as_trimesh_reads_it(tmp_path):
+    """A header whose count does not fit the file's length is no binary STL to trimesh
+    (HeaderError): it reads the file as text, and fails. Its header's 5,000,000 triangles were
+    counted, and an 84-byte file was refused as too large, not as the broken file it is."""
+    path = tmp_path / "cut.stl"
+    path.write_bytes(b"x" * 80 + struct.pack("<I", 5_000_000))
+    assert triangle_count(path) == 0
+    with pytest.raises(MeshProblem) as error:
+        load_mesh(_robot(tmp_path, "cut.stl"), "cut.stl")
+    assert error.value.kind != "too-large", error.value
 
 
 def test_relative_path_escaping_the_repository_is_refused(tmp_path):

@@ -175,6 +175,45 @@ def test_a_mesh_the_repositorys_gitignore_ignores_is_not_certainly_missing(tmp_p
     assert u408()[0] == Severity.WARNING
 
 
+def test_a_gitignore_is_read_as_git_reads_it(tmp_path):
+    """The last pattern of a .gitignore matching a path decides, the deepest .gitignore
+    before those above it, and a folder ignored is not taken back by a ``!`` pattern below
+    it (gitignore(5)). The first reading returned at the first ``!`` pattern met, from the
+    file's folder up: ``!base.dae`` then ``*.dae`` (git: ignored) and a root ``meshes/`` with
+    ``!base.dae`` inside it (git: ignored, the folder's .gitignore unread) were certain
+    errors; ``*`` crossed folders in an anchored pattern."""
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    (tmp_path / "CMakeLists.txt").write_text("install(DIRECTORY meshes DESTINATION share/bot)\n")
+    _stl(tmp_path / "meshes" / "other.stl")
+    cases = [  # (root .gitignore, meshes/.gitignore, uri below package://bot/, severity)
+        ("!base.dae\n*.dae", None, "meshes/base.dae", Severity.WARNING),
+        ("*.dae\n!base.dae", None, "meshes/base.dae", Severity.ERROR),
+        ("meshes/", "!base.dae", "meshes/base.dae", Severity.WARNING),
+        ("*.dae", "!base.dae", "meshes/base.dae", Severity.ERROR),
+        ("!*.dae", "*.dae", "meshes/base.dae", Severity.WARNING),
+        ("meshes/*.dae", None, "meshes/arm/base.dae", Severity.ERROR),
+        ("meshes/**/*.dae", None, "meshes/arm/base.dae", Severity.WARNING),
+        ("meshes/**", None, "meshes/arm/base.dae", Severity.WARNING),
+        ("/arm/", None, "meshes/arm/base.dae", Severity.ERROR),
+        ("arm/", None, "meshes/arm/base.dae", Severity.WARNING),
+        ("base.da[ef]", None, "meshes/base.dae", Severity.WARNING),
+        ("base.da[!e]", None, "meshes/base.dae", Severity.ERROR),
+        ("\\!base.dae", None, "meshes/base.dae", Severity.ERROR),
+    ]
+    for top, below, uri, severity in cases:
+        (tmp_path / ".gitignore").write_text(top + "\n")
+        inner = tmp_path / "meshes" / ".gitignore"
+        if below is None:
+            inner.unlink(missing_ok=True)
+        else:
+            inner.write_text(below + "\n")
+        [(found, message)] = _u407(tmp_path / "robot.urdf", f"package://bot/{uri}", "U408")
+        assert found == severity, (top, below, uri, message)
+
+
 def test_a_mesh_named_with_the_words_of_a_note_is_judged_by_what_was_found(tmp_path):
     """A package the package.xml declares and a folder kept empty travel with the mesh's
     problem (``MeshProblem.declared``, ``kept_empty``), set where they are found; they were

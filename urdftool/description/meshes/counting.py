@@ -433,16 +433,12 @@ def triangle_count(path: Path, data: bytes | None = None) -> int | None:
     try:
         with io.BytesIO(data) as handle:
             if suffix == ".stl":
-                head = handle.read(84)
-                if len(head) == 84 and not head.lstrip().lower().startswith(b"solid"):
-                    return struct.unpack("<I", head[80:84])[0]
-                size = len(data)
-                if len(head) == 84:
-                    count = struct.unpack("<I", head[80:84])[0]
-                    if 84 + 50 * count == size:  # binary STL whose header starts with "solid"
-                        return count
-                handle.seek(0)
-                return _stl_ascii_triangles(handle)
+                from urdftool.description.mesh_arrays import binary_stl
+
+                if binary_stl(data):  # (as trimesh reads it, whatever its header spells)
+                    return struct.unpack("<I", data[80:84])[0]
+                return _stl_ascii_triangles(handle)  # (a binary file cut short too: trimesh
+                # reads it as text, and fails)
             if suffix == ".ply":
                 return _ply_triangles(handle)
             if suffix == ".off":

@@ -12,7 +12,6 @@ A URI is resolved and checked once per robot, a path once per run.
 
 from __future__ import annotations
 
-import fnmatch
 import os
 import re
 from dataclasses import replace
@@ -386,60 +385,98 @@ def _on_a_search_path(uri: str, base: str) -> str:
 
 def _git_ignored(path: str) -> str:
     """Which ``.gitignore`` of the repository ignores the file ``path`` (a mesh missing from
-    the source tree), said as "its .gitignore FILE ignores it ('PATTERN')"; "" when none does.
+    the source tree), said as "the repository's FILE ignores it ('PATTERN')"; "" when none does.
     The repository keeps such a file out of git on purpose: audibot's meshes, unpacked from
     meshes.tar.xz by its CMakeLists.txt (``*.dae``, ``*.stl``), K-Scale's robots, whose
-    meshes their tools download (``*meshes*``). Read from the file's folder up to the
-    repository's root, as git reads them: a pattern without ``/`` matches a name at any depth,
-    one with ``/`` a path from its .gitignore's folder, one ending in ``/`` a folder; a
-    ``!`` pattern matching the file makes the answer "" (not said)."""
+    meshes their tools download (``*meshes*``). Decided as git decides (gitignore(5)): each
+    folder from the repository's root down, then the file; for each, the deepest .gitignore
+    with a pattern matching it, and in it the last such pattern, says whether it is ignored
+    (a ``!`` pattern: not); a folder ignored ignores all below it, which no ``!`` pattern
+    below takes back (git reads no .gitignore inside it)."""
     root = os.fspath(containment_root(Path(os.path.dirname(path))))
-    folder, found = os.path.dirname(path), ""
-    while folder == root or folder.startswith(root.rstrip(os.sep) + os.sep):
-        relative = os.path.relpath(path, folder).replace(os.sep, "/")
-        for pattern in _ignore_patterns(os.path.join(folder, ".gitignore")):
-            negated = pattern.startswith("!")
-            if _ignores(pattern.removeprefix("!"), relative):
-                if negated:
-                    return ""
-                found = found or (f"the repository's "
-                                  f"{os.path.relpath(os.path.join(folder, '.gitignore'), root)}"
-                                  f" ignores it ('{pattern}')")
-        if folder == root:
-            break
-        folder = os.path.dirname(folder)
-    return found
+    parts = os.path.relpath(path, root).replace(os.sep, "/").split("/")
+    if parts[0] in ("", ".", ".."):
+        return ""
+    for end in range(1, len(parts) + 1):  # each folder from the root's down, then the file
+        folder = end < len(parts)
+        for level in range(end - 1, -1, -1):  # the deepest .gitignore first
+            name = os.path.join(root, *parts[:level], ".gitignore")
+            entry = "/".join(parts[level:end])  # (relative to that .gitignore's folder)
+            decided = next(((negated, text) for negated, pattern, folders_only, text in
+                            reversed(_ignore_patterns(name)) if (folder or not folders_only)
+                            and pattern.fullmatch(entry)), None)
+            if decided is not None:
+                break
+        else:
+            continue
+        negated, text = decided
+        if not negated:  # (the file, or a folder above it)
+            return f"the repository's {os.path.relpath(name, root)} ignores it ('{text}')"
+    return ""
 
 
-def _ignore_patterns(name: str) -> list[str]:
-    """The patterns of the .gitignore ``name`` (none when it is no file)."""
+@per_run
+def _ignore_patterns(name: str) -> tuple:
+    """(negated, regular expression, folders only, text) of each pattern of the .gitignore
+    ``name``, in its order (none when it is no file); read once per run."""
     if kind_of(name) != "file":
-        return []
+        return ()
     try:
         text = read_regular(name, 1 << 20).decode("utf-8", "replace")
     except OSError:
-        return []
-    lines = (line.rstrip() for line in text.splitlines())
-    return [line for line in lines if line and not line.startswith("#")]
+        return ()
+    found = []
+    for line in text.splitlines():
+        line = re.sub(r"(?<!\\) +$", "", line)  # trailing spaces, unless escaped
+        if not line or line.startswith("#"):
+            continue
+        negated = line.startswith("!")
+        body = line[1:] if negated else line
+        folders_only = body.endswith("/")
+        body = body.rstrip("/")
+        if body:
+            found.append((negated, _gitignore_pattern(body), folders_only, line))
+    return tuple(found)
 
 
-def _ignores(pattern: str, relative: str) -> bool:
-    """Whether gitignore ``pattern`` matches the file ``relative`` (to the .gitignore's
-    folder, with ``/``) or a folder above it."""
-    folders_only = pattern.endswith("/")
-    pattern = pattern.rstrip("/")
-    pattern = pattern.removeprefix("**/")  # at any depth, as a pattern without "/" is
-    anchored = "/" in pattern
-    pattern = pattern.removeprefix("/")
-    parts = relative.split("/")
-    # the file itself (not for a folder pattern), then each folder above it
-    candidates = [] if folders_only else [relative]
-    candidates += ["/".join(parts[:end]) for end in range(1, len(parts))]
-    for candidate in candidates:
-        subject = candidate if anchored else candidate.rsplit("/", 1)[-1]
-        if fnmatch.fnmatchcase(subject, pattern):
-            return True
-    return False
+def _gitignore_pattern(body: str):
+    """The regular expression matching what gitignore pattern ``body`` (no ``!``, no trailing
+    ``/``) matches, for paths relative to its .gitignore's folder with ``/``: without a ``/``
+    it matches a name at any depth; ``*`` and ``?`` match within a name, ``**`` across
+    folders (``**/``, ``/**/``, ``/**``); ``[...]`` a set; ``\\`` escapes."""
+    anchored = "/" in body
+    body = body.removeprefix("/")
+    out, at = [], 0
+    while at < len(body):
+        c = body[at]
+        if body.startswith("**/", at) and (at == 0 or body[at - 1] == "/"):
+            out.append("(?:.*/)?")
+            at += 3
+        elif body.startswith("**", at) and at + 2 == len(body) and (at == 0 or
+                                                                      body[at - 1] == "/"):
+            out.append(".*")
+            at += 2
+        elif c == "*":
+            out.append("[^/]*")
+            at += 1
+        elif c == "?":
+            out.append("[^/]")
+            at += 1
+        elif c == "[" and "]" in body[at + 2:]:
+            close = body.index("]", at + 2)
+            inner = body[at + 1:close]
+            negate = inner[:1] in ("!", "^")
+            inner = inner[1:] if negate else inner
+            out.append("[" + ("^" if negate else "") + inner.replace("\\", "\\\\") + "]")
+            at = close + 1
+        elif c == "\\" and at + 1 < len(body):
+            out.append(re.escape(body[at + 1]))
+            at += 2
+        else:
+            out.append(re.escape(c))
+            at += 1
+    expression = "".join(out)
+    return re.compile(expression if anchored else "(?:.*/)?" + expression, re.DOTALL)
 
 
 _PLACEHOLDERS = (".gitkeep", ".keep", ".gitignore", ".placeholder", ".empty")
