@@ -737,6 +737,8 @@ def _painted(drawn: _Drawn, order, width: int, height: int):
 
     painted = zbuffer(drawn.corners[order], drawn.depths[order], width, height,
                       keys=np.arange(len(order), dtype=float))
+    if not len(order):  # (nothing drawn: no pixel shows a triangle, and order has none)
+        return np.full_like(painted, -1)
     return np.where(painted >= 0, order[np.maximum(painted, 0)], -1)
 
 
