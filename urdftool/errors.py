@@ -146,7 +146,8 @@ class PackageNotFound(UrdftoolError):
                  unchecked: str | None = None, manifest: str = "package.xml") -> "PackageNotFound":
         """The same error, said of a package that ``owner``'s ``manifest`` (package.xml, or
         rosbuild's manifest.xml) depends on, or (not ``declares``) does not (no owner: said of
-        no package.xml), and of ``unchecked``."""
+        a file in no ROS package, whose folders hold no package.xml or only one that is not a
+        ROS package manifest: no dependency to add is advised), and of ``unchecked``."""
         return PackageNotFound(self.name, self.searched, owner if declares else None,
                                None if declares else owner, self.close,
                                unchecked or self.unchecked, manifest)
