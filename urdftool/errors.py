@@ -402,13 +402,32 @@ def listed(names, quote: bool = True) -> str:
                          for name in names[:LISTED]], len(names))
 
 
-def first_listed(shown: list[str], count: int, unit: str = "") -> str:
+def first_listed(shown: list[str], count: int, unit: str = "", width: int | None = None) -> str:
     """A list of ``count`` items as a message or a report says it: the first :data:`LISTED` of
     ``shown`` (the items as written), then how many in all when there are more: ``a, b, ...
     (31 in all)``; ``unit`` names them in the count (``(8000 places in all)``). The one way
-    every list is cut (:func:`listed` for names of an input)."""
+    every list is cut (:func:`listed` for names of an input). ``width`` [characters]: fewer
+    items when they are long, those written within it (:data:`LISTED_LEAST` at least): twelve
+    meshes each named with its ``package://`` path made one line of 1,900 characters (a
+    macro's U407 on 43 links of AgiBot's G1)."""
+    most = LISTED if width is None else fitting(shown, width)
     counted = f"{count} {unit}" if unit else str(count)
-    return ", ".join(shown[:LISTED]) + (f", ... ({counted} in all)" if count > LISTED else "")
+    return ", ".join(shown[:most]) + (f", ... ({counted} in all)" if count > most else "")
+
+
+LISTED_LEAST = 3  # items a list cut to a width still shows
+
+
+def fitting(shown: list[str], width: int) -> int:
+    """How many of the first :data:`LISTED` of ``shown`` are written within ``width``
+    characters (", " between them), :data:`LISTED_LEAST` at least."""
+    used = most = 0
+    for item in shown[:LISTED]:
+        used += len(item) + 2 * (most > 0)
+        if used > width and most >= LISTED_LEAST:
+            break
+        most += 1
+    return most
 
 
 class OverLimit(UrdftoolError):
