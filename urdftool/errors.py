@@ -319,16 +319,21 @@ def shown_word(name: str) -> str:
 _BARE_SUBSTITUTION = re.compile(r"(?<!\$)\{([A-Za-z_]\w*)\}")
 
 
-def available(kind: str, wanted: str, names) -> str:
+def available(kind: str, wanted: str, names, *more: tuple[str, object]) -> str:
     """``Did you mean 'x'? Available links: a, b, ...`` for a name that does not exist. A name
     holding ``{x}`` without its ``$`` is said to: xacro left ``{x}`` as written, and the closest
-    name (one leg's of four, for ``{name}_hip``) would mislead."""
-    names = sorted({name for name in names if name})  # unnamed elements are another rule's business
+    name (one leg's of four, for ``{name}_hip``) would mislead. ``more``: (kind, names) of
+    other kinds the name may be of, each listed after the first (``<gazebo reference>`` names a
+    link or a joint: "available links: ...; available joints: ..."), the closest name looked
+    for among them all."""
+    # (unnamed elements are another rule's business)
+    kinds = [(one, sorted({name for name in some if name})) for one, some in ((kind, names), *more)]
+    every = sorted({name for _, some in kinds for name in some})
     bare = _BARE_SUBSTITUTION.search(wanted)
     # a name written with white space at an end, which readers keep: shown alike unquoted
-    spaced = None if bare else next((name for name in names if name != wanted
+    spaced = None if bare else next((name for name in every if name != wanted
                                      and name.strip() == wanted.strip()), None)
-    close = [] if bare or spaced else close_names(wanted, names, n=1)
+    close = [] if bare or spaced else close_names(wanted, every, n=1)
     hint = f"did you mean '{close[0]}'? " if close else ""
     if spaced is not None:
         hint = (f"did you mean '{spaced}'? the two differ only in white space, which URDF "
@@ -336,9 +341,11 @@ def available(kind: str, wanted: str, names) -> str:
     if bare:
         hint = (f"'{bare.group(0)}' is a xacro substitution without its '$' "
                 f"(${{{bare.group(1)}}}), which xacro leaves as written; ")
-    quote = any(name != name.strip() for name in names)
-    written = f"available {kind}: {listed(names, quote=quote) or '(none)'}"
-    return Said(hint + written, (("available", written, f"{len(names)} {kind}"),))
+    quote = any(name != name.strip() for name in every)
+    lists = [(one, some, f"available {one}: {listed(some, quote=quote) or '(none)'}")
+             for one, some in kinds]
+    return Said(hint + "; ".join(written for _, _, written in lists),
+                tuple(("available", written, f"{len(some)} {one}") for one, some, written in lists))
 
 
 # Whether a Said formatted into a plain str raises (:class:`Said`): the test suite sets
