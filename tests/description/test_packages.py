@@ -552,7 +552,7 @@ def test_manifest_said_names_what_a_folder_holds_not_always_no_package_xml(tmp_p
     assert manifest_said(tmp_path) == ("a package.xml ('drake_models') naming no ROS build "
                                        "tool (catkin, ament)")
     assert manifest_said(tmp_path, "drake_models") == ""
-    assert manifest_said(tmp_path, "iiwa") == "a package.xml naming package 'drake_models'"
+    assert manifest_said(tmp_path, "iiwa") == "its package.xml naming package 'drake_models'"
     (tmp_path / "package.xml").write_text(
         "<package format='3'><name>arm</name><buildtool_depend condition='$ROS_VERSION == 1'>"
         "catkin</buildtool_depend></package>")

@@ -384,7 +384,7 @@ def manifest_said(folder, name: str | None = None) -> str:
         return "a package.xml that is not a ROS package manifest (no <package> element)"
     declared = package_name(Path(folder))
     if name is not None:
-        return "" if declared == name else f"a {file} naming package '{declared}'"
+        return "" if declared == name else f"its {file} naming package '{declared}'"
     if file != "package.xml":
         return ""  # rosbuild: ROS 1's
     if _CONDITIONED.search(data):
