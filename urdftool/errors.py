@@ -416,7 +416,7 @@ def first_listed(shown: list[str], count: int, unit: str = "", width: int | None
     every list is cut (:func:`listed` for names of an input). ``width`` [characters]: fewer
     items when they are long, those written within it (:data:`LISTED_LEAST` at least): twelve
     meshes each named with its ``package://`` path made one line of 1,900 characters (a
-    macro's U407 on 43 links of AgiBot's G1)."""
+    macro's missing package on 43 links of AgiBot's G1)."""
     most = LISTED if width is None else fitting(shown, width)
     counted = f"{count} {unit}" if unit else str(count)
     return ", ".join(shown[:most]) + (f", ... ({counted} in all)" if count > most else "")
