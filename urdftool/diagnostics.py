@@ -146,6 +146,10 @@ class Finding(Frozen):
         (:data:`~urdftool.lint.engine.URDFDOM_REFUSES`) on a shape urdfdom parses all the same,
         as its rule knows (a joint's ``name=""``, where a joint without the attribute is refused):
         the commands that pose a robot do not refuse it as urdfdom's refusal
+    urdfdom_refuses: True for a finding below an error that is urdfdom's refusal all the same:
+        a shape urdfdom refuses in a file read by another reader that takes it (Drake, a web
+        page), a warning naming the condition (lint.catalogue.Refused): the commands that pose
+        a robot refuse it as urdfdom does
     """
 
     code: str
@@ -158,16 +162,17 @@ class Finding(Frozen):
     not_checked: bool
     repeated: tuple[tuple[str, str, str], ...]
     urdfdom_takes: bool
+    urdfdom_refuses: bool
 
     __slots__ = ("code", "name", "severity", "message", "location", "fix", "target",
-                 "not_checked", "repeated", "urdfdom_takes")
+                 "not_checked", "repeated", "urdfdom_takes", "urdfdom_refuses")
 
     def __init__(self, code: str, name: str, severity: Severity, message: str, location: Location,
                  fix: Fix | None = None, target: str | None = None,
                  not_checked: bool = False, repeated: tuple = (),
-                 urdfdom_takes: bool = False) -> None:
+                 urdfdom_takes: bool = False, urdfdom_refuses: bool = False) -> None:
         set_code, set_name, set_severity, set_message, set_location, set_fix, set_target, \
-            set_not_checked, set_repeated, set_takes = self._setters  # (10,000 findings)
+            set_not_checked, set_repeated, set_takes, set_refuses = self._setters  # (10,000 findings)
         set_code(self, code)
         set_name(self, name)
         set_severity(self, severity)
@@ -178,6 +183,7 @@ class Finding(Frozen):
         set_not_checked(self, not_checked)
         set_repeated(self, repeated)
         set_takes(self, urdfdom_takes)
+        set_refuses(self, urdfdom_refuses)
 
     @property
     def file(self) -> str:

@@ -431,3 +431,23 @@ def test_a_negative_effort_or_velocity_limit_is_no_reason_to_refuse_a_robot(word
         assert document["G"] == [pytest.approx(-2 * 9.81 * 0.1)]  # m g x, about the y axis
         assert [(load["judged"], load["holds"]) for load in document["gravity_loads"]] == [
             (False, None)]
+
+
+@pytest.mark.parametrize("words", [["fk"], ["dh", "--tip", "x_link"]])
+def test_urdfdoms_refusal_in_a_file_drake_reads_is_still_refused(words, tmp_path, run_cli):
+    """RobotLocomotion/models' PR2 (xmlns:drake, nothing says ROS runs it): a prismatic joint
+    without <limit> is a warning naming the condition, "if urdfdom loads it", and still
+    urdfdom's refusal (lint.catalogue.Refused): fk and dh stop at it as at the error."""
+    path = tmp_path / "pr2.urdf"
+    path.write_text('<robot name="pr2" xmlns:drake="http://drake.mit.edu">\n<link name="base"/>\n'
+                    '<link name="x_link"/>\n'
+                    '<joint name="x" type="prismatic"><parent link="base"/><child link="x_link"/>'
+                    '<axis xyz="1 0 0"/></joint>\n</robot>\n')
+    command, *rest = words
+    result = run_cli(command, path, *rest)
+    assert result.exit_code == 1, result.output
+    assert "pr2.urdf:4: warning U202 if urdfdom loads it (Drake reads it" in result.stderr, \
+        result.stderr
+    path.write_text(path.read_text().replace('<axis xyz="1 0 0"/>', '<axis xyz="1 0 0"/><limit '
+                                             'lower="0" upper="1" effort="1" velocity="1"/>'))
+    assert run_cli(command, path, *rest).exit_code == 0

@@ -736,6 +736,20 @@ def test_a_kept_finding_keeps_whether_urdfdom_takes_it():
         cache_module._finding({**cache_module._record(finding), "urdfdom_takes": 1})
 
 
+def test_a_kept_finding_keeps_whether_it_is_urdfdoms_refusal_below_an_error():
+    """Finding.urdfdom_refuses is kept: a served warning on a file Drake reads is still the
+    refusal it was."""
+    from urdftool.diagnostics import Finding, Location, Severity
+
+    finding = Finding("U202", "missing-limit", Severity.WARNING, "if urdfdom loads it: m",
+                      Location("r.urdf", 3), urdfdom_refuses=True)
+    assert cache_module._finding(json.loads(json.dumps(cache_module._record(finding)))) == finding
+    assert cache_module._finding(json.loads(json.dumps(cache_module._record(
+        finding)))).urdfdom_refuses
+    with pytest.raises(TypeError):
+        cache_module._finding({**cache_module._record(finding), "urdfdom_refuses": 1})
+
+
 def test_a_file_the_cache_holds_still_says_what_its_check_read(robot, tmp_path, monkeypatch):
     """A result served from the cache names the files its check read, as a worker's does
     (check's warning of a xacro argument no file names reads them: a hit said nothing)."""

@@ -215,6 +215,26 @@ def test_a_taken_message_makes_a_finding_urdfdom_takes():
     assert not shape.rule.finding("m", where).urdfdom_takes
 
 
+def test_a_refused_message_makes_a_warning_that_is_urdfdoms_refusal():
+    """The engine makes a rule's UrdfdomAlone a Refused message on a file another reader
+    takes: a warning (a Conditional) that is urdfdom's refusal all the same; a Conditional
+    message is no refusal."""
+    from urdftool.diagnostics import Location
+    from urdftool.lint.catalogue import Conditional, Refused
+
+    @rule("U999", "shape", Severity.ERROR)
+    def shape(robot):
+        """A shape urdfdom refuses and another reader takes."""
+        yield None, "x"
+
+    where = Location("r.urdf", 1)
+    refused = shape.rule.finding(Refused("if urdfdom loads it: m"), where)
+    assert refused.urdfdom_refuses and refused.severity == Severity.WARNING
+    assert not refused.urdfdom_takes and type(refused.message) is str
+    conditional = shape.rule.finding(Conditional("if x: m"), where)
+    assert conditional.severity == Severity.WARNING and not conditional.urdfdom_refuses
+
+
 def test_the_engine_stamps_a_findings_own_severity(tmp_path):
     from urdftool.lint.engine import stamp
 

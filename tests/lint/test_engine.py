@@ -517,3 +517,99 @@ def test_urdfdom_refusals_are_decided_per_finding(tmp_path):
                     '</robot>')
     assert engine.urdfdom_refusals(load(str(path))) == []
     assert "U109" in {f.code for f in load_and_check(str(path), CheckOptions()).findings}
+
+
+_DRAKE_PR2 = ('<robot name="pr2" xmlns:drake="http://drake.mit.edu">\n<link name="base"/>\n'
+              '<link name="x_link"/>\n'
+              '<joint name="world_joint" type="fixed"><parent link="world"/>'
+              '<child link="base"/></joint>\n'
+              '<joint name="x" type="prismatic"><parent link="base"/><child link="x_link"/>'
+              '<axis xyz="1 0 0"/></joint>\n</robot>\n')
+_CATKIN = ('<package format="2"><name>bot</name><version>0.0.0</version><description>d'
+           '</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>'
+           '<buildtool_depend>catkin</buildtool_depend></package>')
+
+
+def test_urdfdoms_refusals_in_a_file_drake_reads_are_warnings_and_still_refusals(tmp_path):
+    """RobotLocomotion/models' PR2: parent 'world' (Drake's world frame) and a prismatic joint
+    without <limit> (Drake: unbounded) are warnings naming the condition, "if urdfdom loads it";
+    urdfdom refuses them all the same, and urdfdom_refusals counts them (Refused)."""
+    path = tmp_path / "pr2.urdf"
+    path.write_text(_DRAKE_PR2)
+    findings = [f for f in load_and_check(str(path), CheckOptions()).findings
+                if f.code in ("U105", "U202")]
+    assert [(f.code, f.severity, f.urdfdom_refuses) for f in findings] == [
+        ("U105", Severity.WARNING, True), ("U202", Severity.WARNING, True)]
+    assert all(f.message.startswith("if urdfdom loads it (Drake reads it: its <robot> declares "
+                                    'xmlns:drake="http://drake.mit.edu"; nothing says ROS runs')
+               for f in findings), [f.message for f in findings]
+    assert [f.code for f in engine.urdfdom_refusals(load(str(path)))] == ["U105", "U202"]
+
+
+def test_urdfdoms_refusals_in_a_drake_namespaced_file_of_a_ros_package_stay_errors(tmp_path):
+    """The same file in a catkin package: ROS runs it, the errors hold for its consumers."""
+    (tmp_path / "package.xml").write_text(_CATKIN)
+    path = tmp_path / "pr2.urdf"
+    path.write_text(_DRAKE_PR2)
+    findings = [f for f in load_and_check(str(path), CheckOptions()).findings
+                if f.code in ("U105", "U202")]
+    assert [(f.code, f.severity, f.urdfdom_refuses) for f in findings] == [
+        ("U105", Severity.ERROR, False), ("U202", Severity.ERROR, False)]
+    assert not any(f.message.startswith("if urdfdom") for f in findings)
+    assert [f.code for f in engine.urdfdom_refusals(load(str(path)))] == ["U105", "U202"]
+
+
+def test_a_shape_drake_refuses_too_stays_an_error_in_a_file_drake_reads(tmp_path):
+    """Only what the rule says the reader takes is lowered: a child link not written is no
+    world frame, Drake refuses it as urdfdom does."""
+    path = tmp_path / "pr2.urdf"
+    path.write_text(_DRAKE_PR2.replace("</robot>", '<joint name="j" type="fixed"><parent '
+                                                   'link="x_link"/><child link="ghost"/></joint>'
+                                                   "\n</robot>"))
+    found = [(f.severity, f.urdfdom_refuses, f.message.split(",")[0])
+             for f in load_and_check(str(path), CheckOptions()).findings if f.code == "U105"]
+    assert (Severity.ERROR, False, "joint 'j' names child link 'ghost'") in found, found
+
+
+def test_a_browsers_copy_takes_what_drake_alone_takes_as_an_error(tmp_path):
+    """A web page's copy (three.js urdf-loader) with parent 'world': the loader finds no such
+    link either, so U105 stays an error there, while U202 is a warning."""
+    frontend = tmp_path / "frontend"
+    (frontend / "src").mkdir(parents=True)
+    (frontend / "public").mkdir()
+    (frontend / "package.json").write_text("{}")
+    (frontend / "src" / "model.ts").write_text("loader.load('/pr2.urdf');\n")
+    path = frontend / "public" / "pr2.urdf"
+    path.write_text(_DRAKE_PR2.replace(' xmlns:drake="http://drake.mit.edu"', ""))
+    findings = {f.code: f for f in load_and_check(str(path), CheckOptions()).findings}
+    assert findings["U105"].severity == Severity.ERROR
+    assert findings["U202"].severity == Severity.WARNING
+    assert findings["U202"].message.startswith("if urdfdom loads it (a web page reads it: ")
+
+
+@pytest.mark.parametrize("code, body", [
+    ("U203", '<link name="b"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+             '<axis xyz="0 0 1"/><limit lower="0" upper="1"/></joint>'),
+    ("U405", ""),
+])
+def test_each_marked_shape_is_a_warning_in_a_file_drake_reads_and_an_error_in_ros(code, body,
+                                                                                 tmp_path):
+    """U203's <limit> without effort or velocity, U405's unnamed visual material
+    (RobotLocomotion/models' table_top): warnings naming Drake in Drake's file; errors in the
+    same file of a catkin package."""
+    text = ('<robot name="r" xmlns:drake="http://drake.mit.edu">\n<link name="a"><visual>'
+            '<geometry><box size="1 1 1"/></geometry>\n<material><color rgba="1 0 0 1"/>'
+            f'</material></visual></link>\n{body}\n</robot>\n')
+    if code == "U203":
+        text = text.replace("<material><color rgba=\"1 0 0 1\"/></material>", "")
+    path = tmp_path / "drake" / "r.urdf"
+    path.parent.mkdir()
+    path.write_text(text)
+    (tmp_path / "ros").mkdir()
+    (tmp_path / "ros" / "package.xml").write_text(_CATKIN)
+    (tmp_path / "ros" / "r.urdf").write_text(text)
+    for folder, severity in (("drake", Severity.WARNING), ("ros", Severity.ERROR)):
+        [finding] = [f for f in load_and_check(str(tmp_path / folder / "r.urdf"),
+                                               CheckOptions()).findings if f.code == code]
+        assert finding.severity == severity, finding
+        assert finding.message.startswith("if urdfdom loads it (Drake") == (folder == "drake")

@@ -342,6 +342,8 @@ def _record(finding: Finding) -> dict:
         record["repeated"] = [list(part) for part in finding.repeated]
     if finding.urdfdom_takes:
         record["urdfdom_takes"] = True
+    if finding.urdfdom_refuses:
+        record["urdfdom_refuses"] = True
     return record
 
 
@@ -384,12 +386,12 @@ def _finding(record: dict) -> Finding:
     repeated = tuple(tuple(part) for part in record.get("repeated", ()))
     if not all(len(part) == 3 and all(type(item) is str for item in part) for part in repeated):
         raise TypeError("malformed finding")
-    takes = record.get("urdfdom_takes", False)
-    if type(takes) is not bool:
+    takes, refuses = record.get("urdfdom_takes", False), record.get("urdfdom_refuses", False)
+    if type(takes) is not bool or type(refuses) is not bool:
         raise TypeError("malformed finding")
     return Finding(code, name, _SEVERITIES[record["severity"]], message,
                    _location(record["location"]), None if fix is None else _fix(fix), target,
-                   repeated=repeated, urdfdom_takes=takes)
+                   repeated=repeated, urdfdom_takes=takes, urdfdom_refuses=refuses)
 
 
 def _write(path: Path, text: str, private: bool = False) -> None:

@@ -40,7 +40,7 @@ from urdftool.records import Frozen
 from urdftool.simulators import SIMULATORS
 
 __all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule",
-           "Conditional", "weighed"]
+           "Conditional", "Refused", "UrdfdomAlone", "weighed"]
 
 FAMILIES = {
     "U0": "loading and the URDF vocabulary",
@@ -85,6 +85,34 @@ class Taken(Said):
     robot do not refuse it as urdfdom's refusal (:attr:`~urdftool.diagnostics.Finding.
     urdfdom_takes`, asked by :func:`urdftool.lint.engine.urdfdom_refusals`). Checked against
     the real check_urdf by tests/integration/test_parity.py's table of shapes."""
+
+
+class UrdfdomAlone(Said):
+    """A finding's message when urdfdom refuses the shape the finding is about and other readers
+    of URDF take it (``takers``: the kinds of :class:`~urdftool.description.readers.Reader`
+    that do, 'drake', 'browser'): Drake's world frame as a joint's parent, a revolute joint
+    without ``<limit>``. The rule says only that; the engine, in one place
+    (:func:`urdftool.lint.engine.as_read`), decides from who reads the robot
+    (:func:`~urdftool.description.readers.other_reader`) whether the finding is the rule's as it
+    is (a file urdfdom reads, or one read by a reader that refuses it too) or a :class:`Refused`
+    warning naming the condition. ``repeated``: as a :class:`~urdftool.errors.Said`'s."""
+
+    takers: frozenset
+
+    def __new__(cls, text: str, takers, repeated: tuple = ()):
+        made = super().__new__(cls, text, tuple(repeated) + getattr(text, "repeated", ()))
+        made.takers = frozenset(takers)
+        return made
+
+
+class Refused(Conditional):
+    """A :class:`Conditional` message whose finding is urdfdom's refusal all the same: a shape
+    urdfdom refuses in a file its robot's readers (Drake, a web page) take, a warning naming
+    the condition that still counts as the refusal it is
+    (:attr:`~urdftool.diagnostics.Finding.urdfdom_refuses`, asked by
+    :func:`urdftool.lint.engine.urdfdom_refusals`): the commands that pose a robot refuse it
+    as urdfdom does. The opposite of :class:`Taken`. Made by the engine from a rule's
+    :class:`UrdfdomAlone`, never by a rule."""
 
 
 def weighed(message: str, certain: bool = True, workspace: bool = False,
@@ -155,7 +183,8 @@ class Rule(Frozen):
         ``severity`` lowers the rule's for a finding that holds only under a condition (it is
         never raised: ValueError); a :class:`Conditional` message is reported at its own
         severity when that is below the rule's; a :class:`Taken` message makes a finding
-        urdfdom parses all the same. ``not_checked``: the finding says its file's
+        urdfdom parses all the same, a :class:`Refused` one a finding below an error that is
+        urdfdom's refusal all the same. ``not_checked``: the finding says its file's
         robot was not checked (:attr:`~urdftool.diagnostics.Finding.not_checked`).
         ``repeated``: the parts of the message others say word for word
         (:attr:`~urdftool.diagnostics.Finding.repeated`), with those of a
@@ -171,7 +200,7 @@ class Rule(Frozen):
             severity = min(self.severity, message.severity, key=_RANK.__getitem__)
         return Finding(self.code, self.name, Severity(severity or self.severity), str(message),
                        location, fix, self.target, not_checked, repeated,
-                       isinstance(message, Taken))
+                       isinstance(message, Taken), isinstance(message, Refused))
 
 
 def rule(code: str, name: str, severity: Severity):

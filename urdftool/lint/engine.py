@@ -9,8 +9,8 @@ from pathlib import Path
 
 from urdftool import budget as budgets
 from urdftool.diagnostics import Finding, Location, display_path, distinct_sorted
-from urdftool.errors import LoadError, described, missing_extra
-from urdftool.lint.catalogue import Conditional, Rule, weighed
+from urdftool.errors import LoadError, Said, described, missing_extra
+from urdftool.lint.catalogue import Conditional, Refused, Rule, UrdfdomAlone, weighed
 from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.parts import judged
 from urdftool.lint.rules import CATALOGUE
@@ -173,6 +173,24 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     return distinct_sorted(findings)
 
 
+def as_read(robot, message: UrdfdomAlone) -> str:
+    """A rule's :class:`~urdftool.lint.catalogue.UrdfdomAlone` message as the robot's readers
+    make it, the one place this is decided for every rule: on a robot another reader reads
+    (:func:`~urdftool.description.readers.other_reader`) that takes the shape, a
+    :class:`~urdftool.lint.catalogue.Refused` warning naming the condition, "if urdfdom loads
+    it (WHO reads it and why; nothing says ROS runs it)", still urdfdom's refusal; else the
+    rule's message as it is (what urdfdom refuses is an error for every file urdfdom may
+    read: docs/certainty.md)."""
+    from urdftool.description.readers import other_reader  # (asked of a marked shape only)
+
+    reader = other_reader(robot)
+    if reader is None or reader.kind not in message.takers:
+        return Said(str(message), message.repeated) if message.repeated else str(message)
+    why = f" ({reader.why})"
+    return Refused("if urdfdom loads it" + why + ": " + message,
+                   repeated=(("why", why, ""),))
+
+
 def _run_rules(robot, allows, targets: bool = True) -> list[Finding]:
     findings = []
     for rule in CATALOGUE.running(targets):  # (without targets, no target's family imported)
@@ -181,6 +199,8 @@ def _run_rules(robot, allows, targets: bool = True) -> list[Finding]:
         yielded = []  # (where, message, [fix, severity]): stamped together once the rule ends
         try:
             for where, message, *rest in rule.check(robot):
+                if isinstance(message, UrdfdomAlone):
+                    message = as_read(robot, message)
                 yielded.append((where, message, rest))
             if yielded:  # (most rules find nothing)
                 findings += stamp_all(rule, yielded, robot)
@@ -210,10 +230,13 @@ def urdfdom_refusals(robot, codes=URDFDOM_REFUSES) -> list[Finding]:
     """Why urdfdom (check_urdf, robot_state_publisher) would refuse a loaded robot: the errors
     of :data:`URDFDOM_REFUSES` (or of ``codes``: :data:`POSING_REFUSES`), located, sorted;
     empty when it would parse it; a finding its rule says urdfdom takes
-    (:attr:`~urdftool.diagnostics.Finding.urdfdom_takes`) is not one. Inline suppressions do not apply: they cannot make urdfdom
-    accept a file."""
+    (:attr:`~urdftool.diagnostics.Finding.urdfdom_takes`) is not one, and a warning on a file
+    another reader takes that urdfdom refuses all the same
+    (:attr:`~urdftool.diagnostics.Finding.urdfdom_refuses`) is. Inline suppressions do not
+    apply: they cannot make urdfdom accept a file."""
     found = _run_rules(robot, codes.__contains__)
-    return sorted({f for f in found if f.severity.value == "error" and not f.urdfdom_takes},
+    return sorted({f for f in found if f.urdfdom_refuses
+                   or f.severity.value == "error" and not f.urdfdom_takes},
                   key=Finding.sort_key)
 
 

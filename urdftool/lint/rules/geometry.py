@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Conditional, Severity, rule, weighed
+from urdftool.lint.catalogue import Conditional, Severity, UrdfdomAlone, rule, weighed
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, children_named, first_child
@@ -274,6 +274,10 @@ def malformed_material(robot):
     A top-level material needs a colour or texture; ``rgba`` is four numbers in [0, 1]. urdfdom
     refuses each of these (components must be four numbers in [0, 1]).
 
+    A **warning** naming the condition for a visual's material without a name in a file Drake
+    or a web page reads, as its files say and nothing says ROS runs it (``xmlns:drake``; a web
+    application's served copy that its source fetches): both read its colour.
+
     Bad: ``<material><color rgba="1 0 0"/></material>``
     Good: ``<material name="red"><color rgba="1 0 0 1"/></material>``
     """
@@ -295,7 +299,8 @@ def malformed_material(robot):
     for material in materials:
         parent = material.getparent()
         if parent.tag == "visual" and material.get("name") is None:
-            yield material, f"link '{_link_name(parent)}': visual <material> has no name attribute"
+            yield material, UrdfdomAlone(f"link '{_link_name(parent)}': visual <material> has "
+                                         "no name attribute", {"drake", "browser"})
         for color in children_named(material, "color"):
             problem = _rgba_problem(color)
             if problem:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Conditional, Severity, rule
+from urdftool.lint.catalogue import Conditional, Severity, UrdfdomAlone, rule
 from urdftool.numbers import computed, length, number, unit
 from urdftool.errors import available
 from urdftool.description.urdf import (AXIS, JOINT_NUMBER_PLACES, JOINT_TYPES, LIMITED, MOVING,
@@ -20,6 +20,12 @@ UNIT_TOLERANCE = 1e-4
 # (child tag, attribute, how many numbers) read as numbers in a joint
 NUMERIC_FIELDS = tuple((tag, attribute, count) for tag in JOINT_NUMBER_PLACES
                        for attribute, count in NUMBERS[tag])  # (urdf.NUMBERS: one owner)
+
+
+# The readers other than urdfdom (description.readers.Reader.kind) that take a revolute or
+# prismatic joint without <limit>, or a <limit> without effort or velocity: Drake (unbounded),
+# three.js urdf-loader (it reads lower and upper alone, 0 when missing)
+TAKEN_ELSEWHERE = frozenset({"drake", "browser"})
 
 
 def _name(joint) -> str:
@@ -55,13 +61,19 @@ def missing_limit(robot):
 
     urdfdom refuses it; MoveIt and controllers need the range, effort and velocity.
 
+    A **warning** naming the condition in a file Drake or a web page reads, as its files say
+    and nothing says ROS runs it (``xmlns:drake``; a web application's served copy that its
+    source fetches): Drake reads the joint as unbounded, three.js urdf-loader with a range of 0;
+    still urdfdom's refusal, which the commands that pose a robot refuse.
+
     Bad: ``<joint name="elbow" type="revolute">`` without ``<limit>``
     Good: ``<limit lower="-1.57" upper="1.57" effort="10" velocity="2"/>``
     """
     for joint, kind, limit in _limits(robot):
         if kind in LIMITED and limit is None:
-            yield joint, (f"{kind} joint '{_name(joint)}' has no <limit>; add "
-                          "<limit lower=... upper=... effort=... velocity=.../>")
+            yield joint, UrdfdomAlone(f"{kind} joint '{_name(joint)}' has no <limit>; add "
+                                      "<limit lower=... upper=... effort=... velocity=.../>",
+                                      TAKEN_ELSEWHERE)
 
 
 @rule("U203", "limit-missing-effort-velocity", Severity.ERROR)
@@ -69,6 +81,8 @@ def limit_missing_effort_velocity(robot):
     """A ``<limit>`` lacks ``effort`` or ``velocity``.
 
     Both are required by the URDF specification; urdfdom refuses the joint without them.
+    A **warning** naming the condition in a file Drake or a web page reads (see U202): Drake
+    reads no effort or velocity as unbounded, three.js urdf-loader reads neither.
 
     Bad: ``<limit lower="0" upper="1"/>``
     Good: ``<limit lower="0" upper="1" effort="5" velocity="1"/>``
@@ -81,7 +95,8 @@ def limit_missing_effort_velocity(robot):
         missing = [a for a, text in (("effort", texts[_EFFORT]), ("velocity", texts[_VELOCITY]))
                    if text is None]
         if missing:
-            yield limit, f"joint '{_name(joint)}': <limit> has no {' or '.join(missing)}"
+            yield limit, UrdfdomAlone(f"joint '{_name(joint)}': <limit> has no "
+                                      f"{' or '.join(missing)}", TAKEN_ELSEWHERE)
 
 
 def _bounds(robot, kind: str | None, limit, read: dict | None = None

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import Counter
 
-from urdftool.lint.catalogue import Conditional, Severity, Taken, rule
+from urdftool.lint.catalogue import Conditional, Severity, Taken, UrdfdomAlone, rule
 from urdftool.errors import available, listed
 from urdftool.lint.parts import part
 from urdftool.description.xacro_text import dropped_under
@@ -126,6 +126,10 @@ def joint_missing_endpoint(robot):
                                 "(link=\"\")")
 
 
+# The link Drake's parser reads as its world frame (a joint's parent), which urdfdom refuses
+DRAKE_WORLD = "world"
+
+
 @rule("U105", "unknown-link", Severity.ERROR)
 def unknown_link(robot):
     """A joint names a parent or child link that does not exist.
@@ -137,6 +141,11 @@ def unknown_link(robot):
     robot that includes it (the folder walk skips such a file when its text shows it). So are
     both ends of the joints of a part with no link at all (a mount file's joint between links
     other files write).
+
+    A **warning** naming the condition for a parent link ``world`` in a file Drake reads, as
+    its files say and nothing says ROS runs it (``xmlns:drake``): Drake's world frame
+    (RobotLocomotion/models' PR2, written for Drake); still urdfdom's refusal, which the
+    commands that pose a robot refuse.
 
     Bad: ``<parent link="bse_link"/>`` when the link is ``base_link``
     Good: ``<parent link="base_link"/>``
@@ -158,6 +167,8 @@ def unknown_link(robot):
                     "write, and it has no root link of its own: a part of a robot defined "
                     "elsewhere, right only inside the robot that includes it (alone, urdfdom "
                     "refuses it)", Severity.INFO)
+            elif side == "parent" and link == DRAKE_WORLD:
+                message = UrdfdomAlone(message, {"drake"})
             yield element, message
 
 
