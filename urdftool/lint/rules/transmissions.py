@@ -14,8 +14,7 @@ from __future__ import annotations
 import functools
 import re
 
-from urdftool.description.packages import manifest_said, package_of
-from urdftool.description.ros_version import ros_versions
+from urdftool.description.ros_version import nothing_says_ros, ros_versions
 from urdftool.description.runtime import (STATE_PUBLISHERS, built_as_checked, built_otherwise,
                                          runtime)
 from urdftool.lint.catalogue import Conditional, Severity, rule
@@ -140,10 +139,7 @@ def unknown_hardware_interface(robot):
     Bad: ``<hardwareInterface>hardware_interface/PositionInterface</hardwareInterface>``
     Good: ``<hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>``
     """
-    # (what the robot's package is when nothing says ROS runs it: "no package.xml or ..."
-    # only when there is none; Drake's models have one naming no ROS build tool)
-    unsaid = None if ros_versions(robot).versions else manifest_said(
-        package_of(robot.path) if robot.path != "-" else None)
+    unsaid = None if ros_versions(robot).versions else nothing_says_ros(robot)
     for transmission in transmissions(robot):
         kind = transmission.findtext("type") or transmission.get("type") or ""
         if is_ros2_form(transmission) or not kind.startswith("transmission_interface/"):
@@ -172,13 +168,10 @@ def unknown_hardware_interface(robot):
 
 def _if_ros(unsaid: str | None, message: str):
     """U503's ``message``, as a warning naming the condition when nothing says ROS runs the
-    robot (``unsaid``: what its package is, :func:`~urdftool.description.packages.manifest_said`;
-    None when something says ROS runs it)."""
-    package = f"{unsaid}; " if unsaid else ""
-    return Conditional(f"if ROS 1's ros_control loads it (nothing says ROS runs this robot: "
-                       f"{package}no launch file, controller file or ros_control plugin; "
-                       "Drake reads a transmission without one): " + message) \
-        if unsaid is not None else message
+    robot (``unsaid``: :func:`~urdftool.description.ros_version.nothing_says_ros`; None when
+    something says ROS runs it)."""
+    return Conditional(f"if ROS 1's ros_control loads it ({unsaid}; Drake reads a transmission "
+                       "without one): " + message) if unsaid is not None else message
 
 
 @rule("U504", "transmission-no-actuator", Severity.ERROR)
