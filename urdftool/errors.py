@@ -146,7 +146,8 @@ class PackageNotFound(UrdftoolError):
                  unchecked: str | None = None, manifest: str = "package.xml") -> "PackageNotFound":
         """The same error, said of a package that ``owner``'s ``manifest`` (package.xml, or
         rosbuild's manifest.xml) depends on, or (not ``declares``) does not (no owner: said of
-        no package.xml), and of ``unchecked``."""
+        a file in no ROS package, whose folders hold no package.xml or only one that is not a
+        ROS package manifest: no dependency to add is advised), and of ``unchecked``."""
         return PackageNotFound(self.name, self.searched, owner if declares else None,
                                None if declares else owner, self.close,
                                unchecked or self.unchecked, manifest)
@@ -318,16 +319,21 @@ def shown_word(name: str) -> str:
 _BARE_SUBSTITUTION = re.compile(r"(?<!\$)\{([A-Za-z_]\w*)\}")
 
 
-def available(kind: str, wanted: str, names) -> str:
+def available(kind: str, wanted: str, names, *more: tuple[str, object]) -> str:
     """``Did you mean 'x'? Available links: a, b, ...`` for a name that does not exist. A name
     holding ``{x}`` without its ``$`` is said to: xacro left ``{x}`` as written, and the closest
-    name (one leg's of four, for ``{name}_hip``) would mislead."""
-    names = sorted({name for name in names if name})  # unnamed elements are another rule's business
+    name (one leg's of four, for ``{name}_hip``) would mislead. ``more``: (kind, names) of
+    other kinds the name may be of, each listed after the first (``<gazebo reference>`` names a
+    link or a joint: "available links: ...; available joints: ..."), the closest name looked
+    for among them all."""
+    # (unnamed elements are another rule's business)
+    kinds = [(one, sorted({name for name in some if name})) for one, some in ((kind, names), *more)]
+    every = sorted({name for _, some in kinds for name in some})
     bare = _BARE_SUBSTITUTION.search(wanted)
     # a name written with white space at an end, which readers keep: shown alike unquoted
-    spaced = None if bare else next((name for name in names if name != wanted
+    spaced = None if bare else next((name for name in every if name != wanted
                                      and name.strip() == wanted.strip()), None)
-    close = [] if bare or spaced else close_names(wanted, names, n=1)
+    close = [] if bare or spaced else close_names(wanted, every, n=1)
     hint = f"did you mean '{close[0]}'? " if close else ""
     if spaced is not None:
         hint = (f"did you mean '{spaced}'? the two differ only in white space, which URDF "
@@ -335,9 +341,11 @@ def available(kind: str, wanted: str, names) -> str:
     if bare:
         hint = (f"'{bare.group(0)}' is a xacro substitution without its '$' "
                 f"(${{{bare.group(1)}}}), which xacro leaves as written; ")
-    quote = any(name != name.strip() for name in names)
-    written = f"available {kind}: {listed(names, quote=quote) or '(none)'}"
-    return Said(hint + written, (("available", written, f"{len(names)} {kind}"),))
+    quote = any(name != name.strip() for name in every)
+    lists = [(one, some, f"available {one}: {listed(some, quote=quote) or '(none)'}")
+             for one, some in kinds]
+    return Said(hint + "; ".join(written for _, _, written in lists),
+                tuple(("available", written, f"{len(some)} {one}") for one, some, written in lists))
 
 
 # Whether a Said formatted into a plain str raises (:class:`Said`): the test suite sets
@@ -401,13 +409,32 @@ def listed(names, quote: bool = True) -> str:
                          for name in names[:LISTED]], len(names))
 
 
-def first_listed(shown: list[str], count: int, unit: str = "") -> str:
+def first_listed(shown: list[str], count: int, unit: str = "", width: int | None = None) -> str:
     """A list of ``count`` items as a message or a report says it: the first :data:`LISTED` of
     ``shown`` (the items as written), then how many in all when there are more: ``a, b, ...
     (31 in all)``; ``unit`` names them in the count (``(8000 places in all)``). The one way
-    every list is cut (:func:`listed` for names of an input)."""
+    every list is cut (:func:`listed` for names of an input). ``width`` [characters]: fewer
+    items when they are long, those written within it (:data:`LISTED_LEAST` at least): twelve
+    meshes each named with its ``package://`` path made one line of 1,900 characters (a
+    macro's missing package on 43 links of AgiBot's G1)."""
+    most = LISTED if width is None else fitting(shown, width)
     counted = f"{count} {unit}" if unit else str(count)
-    return ", ".join(shown[:LISTED]) + (f", ... ({counted} in all)" if count > LISTED else "")
+    return ", ".join(shown[:most]) + (f", ... ({counted} in all)" if count > most else "")
+
+
+LISTED_LEAST = 3  # items a list cut to a width still shows
+
+
+def fitting(shown: list[str], width: int) -> int:
+    """How many of the first :data:`LISTED` of ``shown`` are written within ``width``
+    characters (", " between them), :data:`LISTED_LEAST` at least."""
+    used = most = 0
+    for item in shown[:LISTED]:
+        used += len(item) + 2 * (most > 0)
+        if used > width and most >= LISTED_LEAST:
+            break
+        most += 1
+    return most
 
 
 class OverLimit(UrdftoolError):

@@ -534,3 +534,29 @@ def test_a_path_written_for_a_tool_run_from_a_folder_above_is_found_from_one_pla
     assert written_from_above(deep, "meshes/a.stl", skip=str(deep)) == str(tmp_path / "repo")
     assert written_from_above(deep, "meshes/b.stl") is None  # (outside the repository)
     assert written_from_above(tmp_path / "repo", "meshes/a.stl", above=True) is None
+
+
+def test_manifest_said_names_what_a_folder_holds_not_always_no_package_xml(tmp_path):
+    """A message saying a folder has "no package.xml" when it has one that is no ROS package
+    manifest (another tool's file of that name) or names another package misleads whoever
+    opens the folder: manifest_said says what is there."""
+    from urdftool.description.packages import manifest_said
+
+    assert manifest_said(None) == "no package.xml or manifest.xml"
+    assert manifest_said(tmp_path) == "no package.xml or manifest.xml"
+    (tmp_path / "package.xml").write_text("<project><name>web</name></project>")
+    assert manifest_said(tmp_path) == manifest_said(tmp_path, "web") == (
+        "a package.xml that is not a ROS package manifest (no <package> element)")
+    (tmp_path / "package.xml").write_text(
+        "<package format='2'><name>drake_models</name></package>")
+    assert manifest_said(tmp_path) == ("a package.xml ('drake_models') naming no ROS build "
+                                       "tool (catkin, ament)")
+    assert manifest_said(tmp_path, "drake_models") == ""
+    assert manifest_said(tmp_path, "iiwa") == "its package.xml naming package 'drake_models'"
+    (tmp_path / "package.xml").write_text(
+        "<package format='3'><name>arm</name><buildtool_depend condition='$ROS_VERSION == 1'>"
+        "catkin</buildtool_depend></package>")
+    assert manifest_said(tmp_path) == "a package.xml ('arm') naming its build tools under conditions"
+    (tmp_path / "package.xml").write_text(
+        "<package format='2'><name>arm</name><buildtool_depend>catkin</buildtool_depend></package>")
+    assert manifest_said(tmp_path) == ""

@@ -229,6 +229,44 @@ def test_an_srdf_from_a_package_so_named_is_moveits_for_the_default_only(tmp_pat
                         "moveit_config_package's default 'arm_moveit_config'")
 
 
+def test_the_launch_file_said_to_give_moveit_its_files_is_one_running_the_robot(tmp_path):
+    """hans-robot's elfin5_l: run_benchmark_ompl.launch (MoveIt Setup Assistant's, starting
+    moveit_ros_benchmarks) was named as how MoveIt runs with the robot. A launch file that
+    starts the robot or move_group is named first; when only a tool's gives MoveIt both, the
+    message says what it starts."""
+    from urdftool.description.runtime import moveit_with
+
+    context = """<launch>
+  <param name="robot_description" command="$(find xacro)/xacro $(find arm_description)/urdf/arm.urdf.xacro"/>
+  <param name="robot_description_semantic" textfile="$(find arm_moveit_config)/config/arm.srdf"/>
+</launch>"""
+    benchmark = """<launch>
+  <include file="$(find arm_moveit_config)/launch/planning_context.launch"/>
+  <node name="b" pkg="moveit_ros_benchmarks" type="moveit_run_benchmark"/>
+</launch>"""
+    demo = """<launch>
+  <include file="$(find arm_moveit_config)/launch/planning_context.launch"/>
+  <node name="robot_state_publisher" pkg="robot_state_publisher" type="robot_state_publisher"/>
+  <node name="move_group" pkg="moveit_ros_move_group" type="move_group"/>
+</launch>"""
+    files = {"arm_moveit_config/package.xml": PACKAGE.format("arm_moveit_config"),
+             "arm_moveit_config/config/arm.srdf": "<robot name='arm'/>",
+             "arm_moveit_config/launch/planning_context.launch": context,
+             "arm_moveit_config/launch/a_benchmark.launch": benchmark}
+    root = _repo(tmp_path / "tool", files)
+    robot = load_and_check(str(root / "arm_description/urdf/arm.urdf.xacro"), CheckOptions()).robot
+    state, why = moveit_with(robot, root / "arm_moveit_config/config/arm.srdf")
+    assert state == "certain"
+    assert why.startswith("launch file ") and why.endswith(
+        "arm_moveit_config/launch/a_benchmark.launch (which starts moveit_ros_benchmarks, not "
+        "the robot nor move_group) gives MoveIt this SRDF with the robot as checked"), why
+    root = _repo(tmp_path / "demo", {**files, "arm_moveit_config/launch/demo.launch": demo})
+    robot = load_and_check(str(root / "arm_description/urdf/arm.urdf.xacro"), CheckOptions()).robot
+    state, why = moveit_with(robot, root / "arm_moveit_config/config/arm.srdf")
+    assert state == "certain" and why.endswith(
+        "arm_moveit_config/launch/demo.launch gives MoveIt this SRDF with the robot as checked"), why
+
+
 AMENT = ("<package format='3'><name>{}</name><buildtool_depend>ament_cmake</buildtool_depend>"
           "</package>")
 GRIPPER_ROBOT = """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">

@@ -196,3 +196,14 @@ def test_urdfdom_refuses_white_space_after_a_number_only(text, count, refused):
     if refused:
         assert urdfdom_refuses(urdfdom_spelling(text), count) is None
         assert number_tuple(urdfdom_spelling(text), count) == number_tuple(text, count)
+
+
+def test_a_text_that_is_one_part_is_quoted_once():
+    """A property name written without ``${}`` (``length="laser_frame_length"``) is no number:
+    the problem names it once, not as a part and again as the text it is in (sweep: U402 on
+    ROS2-Forklift-Simulation's lidar.xacro read "'laser_frame_length' is not a number (in
+    'laser_frame_length')"). A text of several parts still says which text the part is in."""
+    assert number_tuple.__wrapped__("laser_frame_length", 1) == (
+        None, "'laser_frame_length' is not a number")
+    assert number_tuple.__wrapped__(" width ", 1) == (None, "'width' is not a number")
+    assert number_tuple.__wrapped__("0 x 0", 3) == (None, "'x' is not a number (in '0 x 0')")

@@ -564,3 +564,26 @@ def test_fixes_only_unsafe_and_only_of_hidden_notes_are_said_so():
     assert text[-1] == "[~] 1 fixable with --unsafe-fixes; 1 of them in notes not shown"
     shown = ["".join(span for span, _ in line) for line in lines([FileResult("r.urdf", [note])])]
     assert shown[-1] == "[~] 1 fixable with --unsafe-fixes"
+
+
+def test_an_also_list_of_long_names_shows_the_first_few_and_how_many():
+    """AgiBot's G1 (43 links of one macro whose meshes' package is not found: U407) and Nao
+    (39) said twelve links each with its package:// path after "also": 1,900 characters on
+    one line. Long names are cut to the width of a line (three at least), short ones to
+    twelve, each list then saying how many in all."""
+    def said(line: int, message: str) -> Finding:
+        return Finding("U407", "mesh-package-not-found", Severity.WARNING, message,
+                       Location("nao.urdf", line))
+
+    long = [said(25 + 26 * i, f"link 'Link{i}' <visual>: mesh 'package://nao_meshes/meshes/V40/"
+                              f"Link{i}_long_mesh_name.dae': package 'nao_meshes' not found")
+            for i in range(39)]
+    [line] = [line for line in _text([FileResult("nao.urdf", long)]).splitlines() if "U407" in line]
+    also = line.split("; also ")[1]
+    assert also == ("'package://nao_meshes/meshes/V40/Link1_long_mesh_name.dae', "
+                    "'package://nao_meshes/meshes/V40/Link2_long_mesh_name.dae', "
+                    "'package://nao_meshes/meshes/V40/Link3_long_mesh_name.dae', ... (38 in all)]")
+    short = [said(7, f"link 'Link{i}' has no limit") for i in range(39)]
+    [line] = [line for line in _text([FileResult("nao.urdf", short)]).splitlines() if "U407" in line]
+    assert line.endswith("also 'Link1', 'Link2', 'Link3', 'Link4', 'Link5', 'Link6', 'Link7', "
+                         "'Link8', 'Link9', 'Link10', 'Link11', 'Link12', ... (38 in all)]"), line

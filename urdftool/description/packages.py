@@ -363,17 +363,48 @@ def build_tools(path) -> tuple[tuple[int, str, Path], ...]:
                   Path(folder) / "package.xml") for version, match in found if match)
 
 
+_PACKAGE_ELEMENT = re.compile(rb"<package[\s>]")  # a ROS package manifest's root (REP 127, 140, 149)
+
+
+def manifest_said(folder, name: str | None = None) -> str:
+    """What the folder ``folder`` (None: no package) holds as a ROS package manifest, in the
+    words a message says when that manifest does not settle its question: "no package.xml or
+    manifest.xml"; a package.xml that is not a ROS package manifest (no ``<package>``
+    element: another tool's file of that name); given ``name``, a manifest naming another
+    package; without it, a package.xml naming no ROS build tool (Drake's model collection:
+    ``drake_models``, no catkin or ament) or naming its build tools only under conditions.
+    Empty when the manifest answers (the package ``name``; a build tool of one ROS). The one
+    wording of "is there a package here", so that a message never says "no package.xml" of a
+    folder that has one."""
+    found = _manifest_of(Path(folder)) if folder is not None else None
+    if found is None:
+        return f"no {MANIFESTS_SAID}"
+    file, data = found
+    if file == "package.xml" and not _PACKAGE_ELEMENT.search(data):
+        return "a package.xml that is not a ROS package manifest (no <package> element)"
+    declared = package_name(Path(folder))
+    if name is not None:
+        return "" if declared == name else f"its {file} naming package '{declared}'"
+    if file != "package.xml":
+        return ""  # rosbuild: ROS 1's
+    if _CONDITIONED.search(data):
+        return f"a package.xml ('{declared}') naming its build tools under conditions"
+    return "" if _CATKIN.search(data) or _AMENT.search(data) else \
+        f"a package.xml ('{declared}') naming no ROS build tool (catkin, ament)"
+
+
 def declaring_package(path, package: str) -> tuple[str | None, bool, str]:
     """(the name of the package holding the file ``path``, whether its package.xml declares
     ``package`` as a dependency, the manifest's file name: ``package.xml``, or rosbuild's
-    ``manifest.xml``); (None, False, "package.xml") outside a package. A package not found that
+    ``manifest.xml``); (None, False, "package.xml") outside a package, or in a folder whose
+    package.xml is not a ROS package manifest (:func:`manifest_said`). A package not found that
     it declares is one not installed here, the environment's; one it does not declare is a
     misspelt name or a dependency rosdep would not install (xacro's ``$(find)``, a mesh's
     ``package://``)."""
     folder = package_of(path) if path else None
     found = _manifest_of(folder) if folder is not None else None
-    if found is None:
-        return None, False, "package.xml"
+    if found is None or found[0] == "package.xml" and not _PACKAGE_ELEMENT.search(found[1]):
+        return None, False, "package.xml"  # (another tool's package.xml: rosdep reads none)
     return package_name(folder), package in (declared_dependencies(folder) or ()), found[0]
 
 

@@ -26,7 +26,7 @@ import os
 import re
 
 from urdftool.description.files import kind_of, read_regular, walk
-from urdftool.description.ros_version import ros_versions
+from urdftool.description.ros_version import nothing_says_ros, ros_versions
 from urdftool.diagnostics import display_path
 from urdftool.records import Frozen
 
@@ -43,8 +43,6 @@ _MOST_FOLDERS = 2000  # (a web application's source tree; node_modules skipped)
 _MAX_SOURCE = 1 << 20  # [bytes] a source file larger is not read (bundled output, not written)
 # What says ROS runs a robot besides its package.xml (ros_version.Evidence.kind)
 _RUN = frozenset({"ros2_control", "controllers", "plugin", "launch"})
-NOTHING_SAYS_ROS = ("nothing says ROS runs this robot: no package.xml building with catkin or "
-                    "ament, launch file, controller file or ros_control plugin")
 
 
 class Reader(Frozen):
@@ -75,7 +73,7 @@ def _reader(robot) -> Reader | None:
     if not evidence:
         drake = _drake(robot)
         if drake:
-            return Reader("drake", f"Drake reads it: {drake}; {NOTHING_SAYS_ROS}")
+            return Reader("drake", f"Drake reads it: {drake}; {nothing_says_ros(robot)}")
     if any(e.kind in _RUN for e in evidence):
         return None
     served = _served(robot.path)

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import re
 
-from urdftool.description.packages import build_tools
+from urdftool.description.packages import build_tools, manifest_said, package_of
 from urdftool.diagnostics import display_path
 from urdftool.records import Frozen
 
@@ -108,6 +108,19 @@ def _versions(robot) -> Versions:
                                  "launch"))
     evidence = list(dict.fromkeys(evidence))
     return Versions(frozenset(e.version for e in evidence), tuple(evidence))
+
+
+def nothing_says_ros(robot) -> str:
+    """The condition "nothing says ROS runs this robot", as every message naming it says it
+    (the one wording): what the robot's package is, in the words of
+    :func:`~urdftool.description.packages.manifest_said` ("no package.xml or manifest.xml",
+    or the package.xml there is, naming no ROS build tool: Drake's ``drake_models``; never
+    "no package.xml" where there is one), then the evidence of running that is absent. Said
+    where :func:`ros_versions` found none."""
+    said = manifest_said(package_of(robot.path) if robot.path != "-" else None)
+    package = f"{said}; " if said else ""
+    return (f"nothing says ROS runs this robot: {package}no launch file, controller file or "
+            "ros_control plugin")
 
 
 def plugin_version(library: str) -> int | None:

@@ -1105,21 +1105,52 @@ def moveit_with(robot, srdf: Path) -> tuple[str, str]:
     return robot.memo_for(moveit_with, srdf, lambda: _moveit_with(robot, srdf))
 
 
+# Packages whose nodes start the robot itself: its state, its controllers (a launch file
+# starting none of them, nor MoveIt's move_group, only hands MoveIt's files to a tool)
+_ROBOT_STARTERS = ("robot_state_publisher", "controller_manager", "gazebo_ros", "ros_gz_sim",
+                   "ros_ign_gazebo")
+
+
+def _runs_robot(configuration) -> int:
+    """How surely ``configuration`` runs the robot, as a message naming one launch file of
+    several prefers it: 0 when it starts the robot (its state publisher, controllers or a
+    simulator), 1 MoveIt's move_group alone, 2 neither (MoveIt Setup Assistant's
+    run_benchmark_ompl.launch loads the URDF and SRDF for a benchmark: hans-robot's elfin5_l
+    was said to be run by it, beside its demo.launch)."""
+    packages = {start.package for start in configuration.started}
+    return 0 if packages.intersection(_ROBOT_STARTERS) else \
+        1 if "moveit_ros_move_group" in packages else 2
+
+
 def _moveit_with(robot, srdf: Path) -> tuple[str, str]:
     key = real_path(srdf)
-    loads = [(c, r) for path, c, r in semantic_files(robot) if real_path(path) == key]
+    loads = sorted(((c, r) for path, c, r in semantic_files(robot) if real_path(path) == key),
+                   key=lambda load: _runs_robot(load[0]))  # (stable: the order kept otherwise)
     if not loads:
         other = _other_robot_with(robot, key) or _setup_assistant_robot(robot, Path(srdf))
         return ("conditional", other) if other else ("unknown", "")
     certain = [c for c, relation in loads if relation == AS_CHECKED]
     if certain:
-        return "certain", f"{certain[0].named} gives MoveIt this SRDF with the robot as checked"
+        return "certain", f"{_giving(certain[0])} gives MoveIt this SRDF with the robot as checked"
     for configuration, relation in loads:
         if relation.startswith(f"{AS_CHECKED} {BY_DEFAULT}"):
-            return "by default", (f"{configuration.named} gives MoveIt this SRDF with the robot "
-                                  f"{relation}")
+            return "by default", (f"{_giving(configuration)} gives MoveIt this SRDF with the "
+                                  f"robot {relation}")
     configuration, relation = loads[0]
-    return "conditional", f"{configuration.named} gives MoveIt this SRDF with the robot {relation}"
+    return "conditional", (f"{_giving(configuration)} gives MoveIt this SRDF with the robot "
+                           f"{relation}")
+
+
+def _giving(configuration) -> str:
+    """The launch file of ``configuration`` as a message says it gives MoveIt its files: with
+    what it starts when it starts nodes and neither the robot nor move_group
+    (:func:`_runs_robot`), the only launch file that gives both being a tool's (elfin5_l's
+    run_benchmark_ompl.launch, its demo.launch loading no robot_description); a fragment
+    starting nothing (planning_context.launch) is named alone."""
+    started = sorted({s.package for s in configuration.started if s.package})
+    if _runs_robot(configuration) < 2 or not started:
+        return configuration.named  # (a fragment starting nothing: the parameters of others)
+    return f"{configuration.named} (which starts {', '.join(started)}, not the robot nor move_group)"
 
 
 def setup_assistant(package: Path) -> dict | None:

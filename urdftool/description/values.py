@@ -103,13 +103,16 @@ _PLAIN = "0123456789+-.eE \t\n\r\f\v"
 
 
 def _part_by_part(text: str, parts: list[str]):
-    """:func:`number_tuple` of ``text`` split into ``parts``, each read by :func:`to_float`."""
+    """:func:`number_tuple` of ``text`` split into ``parts``, each read by :func:`to_float`. The
+    problem quotes the part that is no number, and the whole text only when it holds more (a
+    one-part text said twice, ``'x' is not a number (in 'x')``, reads as two values)."""
     values = []
     for part in parts:
         try:
             values.append(to_float(part))
         except ValueError:
-            return None, f"'{part}' is not a number{_unseen_space(part)} (in '{text}')"
+            whole = "" if part == text.strip(_SPACE) else f" (in '{text}')"
+            return None, f"'{part}' is not a number{_unseen_space(part)}{whole}"
     return tuple(values), None
 
 

@@ -31,7 +31,7 @@ import re
 from typing import Callable
 
 from urdftool.diagnostics import Severity, display_path
-from urdftool.errors import LISTED, first_listed
+from urdftool.errors import LISTED, first_listed, fitting
 from urdftool.report.escape import text as escaped
 from urdftool.report.summary import STYLES, Summary, counted, via_text
 
@@ -392,6 +392,9 @@ def _names(message: str) -> tuple[str, ...]:
     return tuple(_NAME.findall(message))
 
 
+ALSO_WIDTH = 200  # [characters] of the names an "also" list shows (fewer when long: errors.fitting)
+
+
 def _also(group: list, named: list | None = None) -> str:
     """The other names a group's line is about, where its findings name different things
     (three joints of one macro line, each its own limit): "; also 'b', 'c'". The names
@@ -424,8 +427,8 @@ def _also(group: list, named: list | None = None) -> str:
               dict.fromkeys((names[at], *(names[i] for i in with_it)) for names in named)
               if said != mine]
     if len(group) > _NAMES_READ:  # (how many in all is not known)
-        return f"; also {', '.join(others[:LISTED])}, ..."
-    return f"; also {_listed(others)}"
+        return f"; also {', '.join(others[:fitting(others, ALSO_WIDTH)])}, ..."
+    return f"; also {first_listed(others, len(others), width=ALSO_WIDTH)}"
 
 
 def _holds(named: list[tuple], holder: int, i: int) -> bool:

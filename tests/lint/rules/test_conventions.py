@@ -147,6 +147,51 @@ def test_optical_frames_that_are_wrong(tmp_path):
     assert "from the sensor" in message
 
 
+def test_an_optical_frame_is_said_turned_as_the_file_writes_it_from_a_frame_named_neutrally(
+        tmp_path):
+    """elkapod's depth camera: rpy="3.14159265359  0 0" was printed as "-3.142 0 0", a number
+    the file does not hold; its 'lidar_optical', a gpu_lidar's, was called fixed to a "camera
+    link". The rpy is quoted as written (a xacro expression with its value), and the body
+    frame is a camera's or a lidar's only as a Gazebo sensor says."""
+    robot = """<link name="base_link"/><link name="{body}"/><joint name="bj" type="fixed">
+  <parent link="base_link"/><child link="{body}"/></joint>
+<link name="{body}_optical"/><joint name="oj" type="fixed"><parent link="{body}"/>
+  <child link="{body}_optical"/><origin xyz="0 0 0.04" rpy="{rpy}"/></joint>{sensor}"""
+    [(_, message)] = _found(tmp_path, robot.format(body="front_camera", rpy="3.14159265359  0 0",
+                                                   sensor=""), ("U417",))
+    assert message.startswith("optical frame 'front_camera_optical' is turned "
+                              "rpy=\"3.14159265359  0 0\" from link 'front_camera'; "), message
+    assert message.endswith("from the sensor's body frame (REP 103)")
+    lidar = ('<gazebo reference="lidar_optical"><sensor name="l" type="gpu_lidar">'
+             '<gz_frame_id>lidar_optical</gz_frame_id></sensor></gazebo>')
+    [(_, message)] = _found(tmp_path, robot.format(body="lidar", rpy="0 0 0", sensor=lidar),
+                            ("U417",))
+    assert "is turned rpy=\"0 0 0\" from lidar link 'lidar'; " in message
+    assert "camera" not in message and message.endswith("from the lidar's body frame (REP 103)")
+    camera = '<gazebo reference="cam"><sensor name="c" type="depth"/></gazebo>'
+    [(_, message)] = _found(tmp_path, robot.format(body="cam", rpy="0 0 0", sensor=camera),
+                            ("U417",))
+    assert "from camera link 'cam'; " in message and "the camera's body frame" in message
+    # written with xacro: the expression as written, then its value
+    (tmp_path / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        + robot.format(body="cam", rpy="${pi/2} 0 ${pi/2}", sensor="") + "</robot>")
+    result = load_and_check(str(tmp_path / "r.urdf.xacro"),
+                            CheckOptions(selection=Selection(("U417",))))
+    [finding] = result.findings
+    assert 'is turned rpy="${pi/2} 0 ${pi/2}" (= 1.571 0 1.571) from link \'cam\'' in \
+        finding.message, finding.message
+    # frames between the body and the optical frame: the turn in all, and the joint's own
+    text = robot.format(body="cam", rpy="-1.5708 0 -1.5708", sensor="") + (
+        '<link name="cam_depth_optical"/><joint name="dj" type="fixed">'
+        '<parent link="cam_optical"/><child link="cam_depth_optical"/>'
+        '<origin rpy="0 0 1.5708"/></joint>')
+    [(_, message)] = _found(tmp_path, text, ("U417",))
+    assert message.startswith("optical frame 'cam_depth_optical' is turned rpy=\"") and (
+        "in all (computed through the frames between; its joint 'dj' writes rpy=\"0 0 "
+        "1.5708\") from link 'cam'; ") in message, message
+
+
 def test_an_optical_frame_on_a_part_that_is_no_camera_body_is_not_judged_by_its_axes(tmp_path):
     """Reachy Mini (onshape-to-robot): 'camera_optical' is fixed to the servo 'xl_330', whose
     CAD axes are turned anyhow; in the root frame it is z forward, x right, y down."""

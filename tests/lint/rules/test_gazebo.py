@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from crossfile_helpers import broken_copy, case_messages, check_folder
@@ -91,6 +93,21 @@ def test_diffbot_camera_reference_misspelt(tmp_path):
                            '<gazebo reference="camera">')
     assert [f.code for f in findings] == ["U611"]
     assert "did you mean 'camera_link'" in findings[0].message
+
+
+def test_an_unknown_reference_offers_the_joints_it_may_name_too(tmp_path):
+    """A <gazebo reference> names a link or a joint (a joint's <provideFeedback>): the
+    message said so and offered links alone (sweep: go1's 'names no link or joint; ...
+    available links: FL_calf, ...'), and looked for a misspelt joint's name among links."""
+    [message] = case_messages("U611_gazebo_unknown_reference.urdf", "U611")
+    assert message == ("<gazebo reference='hed'> names no link or joint; did you mean 'head'? "
+                       "available links: base_link, cam, head; available joints: cam_joint, "
+                       "head_joint")
+    case = Path(__file__).parents[2] / "cases" / "U611_gazebo_unknown_reference.urdf"
+    text = case.read_text().replace('reference="hed"', 'reference="head_jiont"')
+    _, [finding] = check_folder(tmp_path, {"robot.urdf": text}, select=("U611",))
+    assert finding.message.startswith("<gazebo reference='head_jiont'> names no link or joint; "
+                                      "did you mean 'head_joint'? available links: ")
 
 
 def test_wheel_not_continuous_says_what_would_be_right():

@@ -406,6 +406,19 @@ def test_the_bound_skips_a_marker_box(tmp_path):
     assert found  # 2.5 times the bound of a 2 cm part (7.5 times its uniform solid: not U310)
 
 
+def test_the_bound_is_said_as_the_verdict_uses_it(tmp_path):
+    """Romeo's distal fingers (trace 3.3e-09, bound 1.58e-09) were reported and its thumbs
+    (the same tensor, bound 1.93e-09) not, though the message said only "more than ... (at
+    most 2 m d^2 = ...)", which the thumbs' trace is too: the rule reports a trace over twice
+    the bound (the whole rigid body's farthest point is generous), and the message says so,
+    so that the numbers it prints decide as the rule does."""
+    found, findings = _check(tmp_path, "U316", 0.001, 5e-7, '<box size="0.02 0.02 0.02"/>')
+    [message] = [f.message for f in findings]
+    assert message.startswith("link 'a': declared inertia has trace 1.5e-06 kg m^2, over twice "
+                              "the most 0.001 kg can have anywhere inside its geometry (2 m d^2 "
+                              "= 6e-07, d = 0.0173 m the farthest point"), message
+
+
 def test_inertial_at_the_joint_origin_inside_the_link_is_fine(tmp_path):
     text = """<robot name="r"><link name="base_link"/>
       <joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>

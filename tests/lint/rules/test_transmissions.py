@@ -301,6 +301,29 @@ def test_a_transmission_without_an_interface_is_an_error_where_ros_1_runs_it(
                                         "hardware_interface/PositionJointInterface")
 
 
+@pytest.mark.parametrize("package, said", [
+    (None, "nothing says ROS runs this robot: no package.xml or manifest.xml; no launch file"),
+    # Drake's model collection: a package.xml naming no ROS build tool (sweep: RobotLocomotion/
+    # models' allegro hands read "no package.xml" beside drake_models' package.xml)
+    ("<package format='2'><name>drake_models</name><version>0.0.0</version></package>",
+     "nothing says ROS runs this robot: a package.xml ('drake_models') naming no ROS build "
+     "tool (catkin, ament); no launch file"),
+    ("<?xml version='1.0'?><project><name>site</name></project>",  # another tool's file
+     "nothing says ROS runs this robot: a package.xml that is not a ROS package manifest (no "
+     "<package> element); no launch file"),
+])
+def test_nothing_saying_ros_runs_the_robot_says_what_package_xml_there_is(tmp_path, package, said):
+    body = ('<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
+            '<joint name="head_joint"/><actuator name="m"/></transmission>')
+    files = {"robot.urdf": HEAD_ROBOT.format(body=body)}
+    if package:
+        files["package.xml"] = package
+    (tmp_path / ".git").mkdir()
+    _, findings = check_folder(tmp_path, files, select=("U503",))
+    assert [(f.code, f.severity) for f in findings] == [("U503", Severity.WARNING)]
+    assert said in findings[0].message
+
+
 def test_a_min_beyond_the_lower_limit_says_commands_go_down_to_it(tmp_path):
     # igus ReBeL's joint2: 'position min is -2.0944, beyond the URDF <limit> (-1.91986);
     # commands up to -2.0944 pass ros2_control' read as if -2.0944 were a ceiling

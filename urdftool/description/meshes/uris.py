@@ -17,12 +17,12 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
-from urdftool.description.files import (MANIFESTS_SAID, inside, kind_of, listing,
+from urdftool.description.files import (inside, kind_of, listing,
                                         no_file_there, read_regular, real_inside, real_path,
                                         resolved, walk)
 from urdftool.description.packages import (containment_root, declaring_package, installed,
-                                          package_name, package_of, package_uri_parts,
-                                          written_from_above)
+                                          manifest_said, package_name, package_of,
+                                          package_uri_parts, written_from_above)
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
 from urdftool.errors import MeshProblem, PackageNotFound, similarity
@@ -247,7 +247,7 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
             owner, declares, manifest = declaring_package(robot.path, package) \
                 if robot.path != "-" else (None, False, "package.xml")
             error = error.declared(owner, declares, manifest=manifest)
-            lacking = f"; {seen} (no {MANIFESTS_SAID}) does not hold '{tail}'" if seen else ""
+            lacking = f"; {seen}{_holding(seen, package)} does not hold '{tail}'" if seen else ""
             misspelt = any(_misspelling(package, close) for close in error.close or ())
             below = _named_below(base, package) if not tail else None
             held = (f"; not certain: '{below}', below the robot file, has that name, where "
@@ -265,12 +265,22 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                                       "beside the robot file, where loaders that drop "
                                       "'package://' (PyBullet; Pinocchio given this folder) "
                                       "find it", certain=False, repeated=error.repeated)
+    held = _holding(os.path.join(folder, package), package)
     return MeshProblem("package", f"mesh '{uri}': {error}; not certain: {folder} holds a "
-                                  f"folder '{package}' (no {MANIFESTS_SAID}) with this file, where "
+                                  f"folder '{package}'{held} with this file, where "
                                   "PyBullet (which looks in every folder above the robot file) "
                                   "and loaders given it as a package path (Pinocchio's "
                                   "package_dirs) find it", certain=False,
                        repeated=error.repeated)
+
+
+def _holding(folder: str, package: str) -> str:
+    """`` (no package.xml or manifest.xml)``, or what else makes the folder ``folder``, named as
+    the package ``package``, no package of that name
+    (:func:`~urdftool.description.packages.manifest_said`), as a message says it after the
+    folder's name; empty when its manifest names that package."""
+    said = manifest_said(folder, package)
+    return f" ({said})" if said else ""
 
 
 def _named_below(base: str, name: str) -> str | None:

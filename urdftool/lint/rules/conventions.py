@@ -175,18 +175,73 @@ def optical_frame_rotation(robot):
         if _angle(OPTICAL, turn) <= ANGLE_TOLERANCE:
             continue
         tilt = _pitched_view(turn)
+        joint = parents[name]
+        turned = _turn_said(robot, joint, above == body, turn)
+        kind = _sensor_kind(robot, (body, name))
+        link = f"{kind} link '{body}'" if kind else f"link '{body}'"
         if tilt is not None:  # the camera tilted in a mount frame: the optical frame may be right
-            yield parents[name], (
-                f"optical frame '{name}' is turned rpy=\"{_rpy_text(turn)}\" from camera link "
-                f"'{body}': z along a view pitched {number(tilt, 3)} degrees from the link's x "
-                "axis, as a camera tilted in its mount is; REP 103 puts the camera's body frame "
-                "along the view, the optical frame rpy=\"-pi/2 0 -pi/2\" from it"), None, \
-                Severity.INFO
+            yield joint, (
+                f"optical frame '{name}' is turned {turned} from {link}: z along a view "
+                f"pitched {number(tilt, 3)} degrees from the link's x axis, as a camera tilted "
+                f"in its mount is; REP 103 puts the {kind or 'sensor'}'s body frame along the "
+                "view, the optical frame rpy=\"-pi/2 0 -pi/2\" from it"), None, Severity.INFO
             continue
-        yield parents[name], (f"optical frame '{name}' is turned rpy=\"{_rpy_text(turn)}\" "
-                              f"from camera link '{body}'; an optical frame is z forward, x "
-                              "right, y down: rpy=\"-pi/2 0 -pi/2\" from the camera's body "
-                              "frame (REP 103)")
+        yield joint, (f"optical frame '{name}' is turned {turned} from {link}; an optical frame "
+                      "is z forward, x right, y down: rpy=\"-pi/2 0 -pi/2\" from the "
+                      f"{kind or 'sensor'}'s body frame (REP 103)")
+
+
+LIDAR_SENSORS = ("ray", "gpu_ray", "lidar", "gpu_lidar")  # Gazebo Classic's and gz's
+
+
+def _sensor_kind(robot, frames) -> str | None:
+    """What the file says the sensor of an optical frame is: "camera" or "lidar" when a
+    Gazebo sensor of those types sits on one of ``frames`` (its body, the optical frame) or
+    stamps its data with one, the first found; None when none says (the message then names
+    the frame alone: elkapod's ``lidar_optical``, a gpu_lidar's, was called a camera link)."""
+    for gazebo, sensor in gazebo_sensors(robot):
+        kind = (sensor.get("type") or "").lower()
+        said = "camera" if kind in CAMERA_SENSORS else "lidar" if kind in LIDAR_SENSORS else None
+        if said is None:
+            continue
+        stamped = {(element.text or "").strip().lstrip("/") for tag in CAMERA_FRAME_TAGS
+                   for element in sensor.iter(tag)}
+        if gazebo.get("reference") in frames or stamped & set(frames):
+            return said
+    return None
+
+
+def _turn_said(robot, joint, direct: bool, turn) -> str:
+    """How an optical frame's turn from its body frame is said: the ``rpy`` of its joint's
+    ``<origin>`` as the file writes it (``rpy="3.14159265359  0 0"``, which a search of the
+    file finds, not the -3.142 it was printed as), with its value when written with xacro
+    expressions; when frames lie between the two (``direct`` false), the turn in all,
+    computed, and the joint's own as written."""
+    origin = robot.child(joint, "origin")
+    value = origin.get("rpy") if origin is not None else None
+    written = _written(robot, origin, "rpy") if value is not None else None
+    if written is None:
+        own = "no rpy (0 0 0)"
+    else:
+        values, problem = parse_numbers(value, 3)
+        expanded = "" if problem or "$" not in written else \
+            f" (= {' '.join(number(v, 4) for v in values)})"
+        own = f"rpy=\"{written}\"{expanded}"
+    if direct:
+        return own
+    return (f"rpy=\"{_rpy_text(turn)}\" in all (computed through the frames between; its "
+            f"joint '{joint.get('name')}' writes {own})")
+
+
+def _written(robot, element, attribute: str) -> str:
+    """``attribute`` of ``element`` as the file writes it (a xacro expression as written),
+    else as loaded."""
+    from urdftool.lint.fixes.tags import Unfixable, source_tag  # (only for a finding)
+
+    found = source_tag(robot, element)
+    if isinstance(found, Unfixable) or attribute not in found[1].attributes:
+        return element.get(attribute)
+    return " ".join(found[1].attributes[attribute][2].split("\n"))
 
 
 def _pitched_view(turn) -> float | None:

@@ -136,7 +136,7 @@ def gazebo_unknown_reference(robot):
         reference = gazebo.get("reference")
         if reference is not None and reference not in robot.links and reference not in robot.joints:
             yield gazebo, (f"<gazebo reference='{reference}'> names no link or joint; "
-                           + available('links', reference, robot.links))
+                           + available('links', reference, robot.links, ('joints', robot.joints)))
 
 
 @rule("U612", "diff-drive-unknown-joint", Severity.ERROR)

@@ -1523,7 +1523,7 @@ def inertia_beyond_geometry(robot):
         if trace > FAR_BEYOND * bound:
             fixed = f" and the links fixed to it" if len(reach.links) > 1 else ""
             yield _inertial_part(link, "inertia"), (
-                f"link '{_name(link)}': declared inertia has trace {number(trace, 3)} kg m^2, more "
-                f"than {properties.mass:g} kg can have anywhere inside its geometry{fixed} "
-                f"(at most 2 m d^2 = {number(bound, 3)}, d = {number(farthest, 3)} m the farthest point from "
-                "its centre of mass): a tensor of another part, mass or unit")
+                f"link '{_name(link)}': declared inertia has trace {number(trace, 3)} kg m^2, over "
+                f"twice the most {properties.mass:g} kg can have anywhere inside its "
+                f"geometry{fixed} (2 m d^2 = {number(bound, 3)}, d = {number(farthest, 3)} m the "
+                "farthest point from its centre of mass): a tensor of another part, mass or unit")

@@ -14,8 +14,7 @@ from __future__ import annotations
 import functools
 import re
 
-from urdftool.description.files import MANIFESTS_SAID
-from urdftool.description.ros_version import ros_versions
+from urdftool.description.ros_version import nothing_says_ros, ros_versions
 from urdftool.description.runtime import (STATE_PUBLISHERS, built_as_checked, built_otherwise,
                                          runtime)
 from urdftool.lint.catalogue import Conditional, Severity, rule
@@ -132,15 +131,15 @@ def unknown_hardware_interface(robot):
     ``<actuator>`` (the form before ROS Indigo): gazebo_ros_control reads it there, with a
     deprecation warning at every start.
 
-    A **warning** naming the condition on a robot nothing says ROS runs (no package.xml, launch
-    file, controller file or ros_control plugin): only ROS 1's ros_control reads the
+    A **warning** naming the condition on a robot nothing says ROS runs (no package.xml naming
+    a ROS build tool, launch file, controller file or ros_control plugin): only ROS 1's ros_control reads the
     interface, and Drake reads a transmission without one (kinova_drake's Gen3 models, loaded
     by pydrake scripts beside them, were seven errors each).
 
     Bad: ``<hardwareInterface>hardware_interface/PositionInterface</hardwareInterface>``
     Good: ``<hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface>``
     """
-    unsaid = not ros_versions(robot).versions
+    unsaid = None if ros_versions(robot).versions else nothing_says_ros(robot)
     for transmission in transmissions(robot):
         kind = transmission.findtext("type") or transmission.get("type") or ""
         if is_ros2_form(transmission) or not kind.startswith("transmission_interface/"):
@@ -167,12 +166,12 @@ def unknown_hardware_interface(robot):
                         + available('interfaces', bare, HARDWARE_INTERFACES)))
 
 
-def _if_ros(unsaid: bool, message: str):
+def _if_ros(unsaid: str | None, message: str):
     """U503's ``message``, as a warning naming the condition when nothing says ROS runs the
-    robot (``unsaid``)."""
-    return Conditional("if ROS 1's ros_control loads it (nothing says ROS runs this robot: no "
-                       f"{MANIFESTS_SAID}, launch file, controller file or ros_control plugin; "
-                       "Drake reads a transmission without one): " + message) if unsaid else message
+    robot (``unsaid``: :func:`~urdftool.description.ros_version.nothing_says_ros`; None when
+    something says ROS runs it)."""
+    return Conditional(f"if ROS 1's ros_control loads it ({unsaid}; Drake reads a transmission "
+                       "without one): " + message) if unsaid is not None else message
 
 
 @rule("U504", "transmission-no-actuator", Severity.ERROR)
