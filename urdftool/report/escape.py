@@ -35,6 +35,9 @@ Graphviz DOT                  :func:`dot`         a quoted ID ended early, DOT's
                                                   ID (one to one)
 YAML documents                :func:`yaml_text`   a scalar folded or broken onto a line of its
                                                   own; non-printable characters
+SARIF message text           :func:`sarif_text`  SARIF's own grammar inside the JSON string:
+                                                  ``[text](0)`` an embedded link, ``{0}`` a
+                                                  placeholder, ``\\[`` a bracket
 JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact, the
 rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``); a name's
                               (``paired``: LSP)   undecodable byte (a lone surrogate) is U+FFFD
@@ -216,6 +219,17 @@ def svg(value) -> str:
 _FORMULA = ("=", "+", "-", "@")
 
 
+def sarif_text(value) -> str:
+    """A SARIF plain text message (a result's, a related location's): the text exact for a SARIF
+    viewer. SARIF reads ``[text](id)`` as an embedded link (3.11.6: to a related location or a
+    URI; ``\\[``, ``\\]`` and ``\\\\`` are a bracket and a backslash) and ``{0}`` as a placeholder
+    (3.11.5: ``{{`` and ``}}`` are braces), so each is escaped as SARIF says: a link named
+    ``[click](0)`` stays text, a name holding ``{0}`` or a backslash stays what it was. The JSON
+    encoder escapes the rest."""
+    return value.replace("\\", "\\\\").replace("[", "\\[").replace("]", "\\]") \
+        .replace("{", "{{").replace("}", "}}")
+
+
 def csv_cell(value) -> str:
     """A text cell of CSV (csv.writer quotes it): no line break, and a leading ``'`` before
     what a spreadsheet would run as a formula."""
@@ -254,5 +268,5 @@ def yaml_text(data) -> str:
     return yaml.dump(data, Dumper=Dumper, sort_keys=False, width=float("inf"))
 
 
-__all__ = ["Lines", "csv_cell", "dot", "lines", "markdown", "markup", "printable", "svg", "text",
-           "workflow", "write_xml", "xml", "yaml_text"]
+__all__ = ["Lines", "csv_cell", "dot", "lines", "markdown", "markup", "printable", "sarif_text",
+           "svg", "text", "workflow", "write_xml", "xml", "yaml_text"]
