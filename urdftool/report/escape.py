@@ -56,12 +56,14 @@ import io
 import re
 
 # Characters that move the cursor, end a line, change the terminal's state or reorder text
-# (Unicode categories Cc, Cf, Cs, Zl, Zp): a name in a robot file that holds one could forge
-# report lines ("::error ...", "no problems found"), hide text, or make a report unwritable.
+# (Unicode categories Cc, Cf, Cs, Zl, Zp), and U+FFFE and U+FFFF, the two characters besides
+# those that XML 1.0 cannot hold (a file named with one made lxml refuse the JUnit report): a
+# name in a robot file that holds one could forge report lines ("::error ...", "no problems
+# found"), hide text, or make a report unwritable.
 _UNPRINTABLE = re.compile(
     "[\x00-\x1f\x7f-\x9f\xad\u0600-\u0605\u061c\u06dd\u070f\u0890\u0891\u08e2\u180e"
     "\u200b-\u200f\u2028-\u202e\u2060-\u2064\u2066-\u206f\ud800-\udfff\ufeff"
-    "\ufff9-\ufffb\U000110bd\U000110cd\U00013430-\U0001343f\U0001bca0-\U0001bca3"
+    "\ufff9-\ufffb\ufffe\uffff\U000110bd\U000110cd\U00013430-\U0001343f\U0001bca0-\U0001bca3"
     "\U0001d173-\U0001d17a\U000e0001\U000e0020-\U000e007f]")
 _SHORT = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
 
