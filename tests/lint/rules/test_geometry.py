@@ -175,6 +175,28 @@ def test_a_mesh_the_repositorys_gitignore_ignores_is_not_certainly_missing(tmp_p
     assert u408()[0] == Severity.WARNING
 
 
+def test_a_gitignore_of_more_patterns_than_are_matched_may_ignore_the_mesh(tmp_path):
+    """A .gitignore of 60,000 patterns (730 KB) stopped a check of 5 missing meshes at its 60 s
+    budget: each mesh matched every pattern again (fnmatch's cache holds 32,768). Past
+    MAX_IGNORE_PATTERNS it is not matched, and may ignore the mesh: not certain, no error;
+    a pattern quoted is cut."""
+    from urdftool.description.meshes import uris
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    (tmp_path / "CMakeLists.txt").write_text("install(DIRECTORY meshes DESTINATION share/bot)\n")
+    _stl(tmp_path / "meshes" / "other.stl")
+    many = [f"p{i}x*/\n" for i in range(uris.MAX_IGNORE_PATTERNS)]
+    (tmp_path / ".gitignore").write_text("".join(many) + "z*\n")
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bot/meshes/b.dae", "U408")
+    assert severity == Severity.WARNING and "(not matched), any of which may ignore it" in message
+    (tmp_path / ".gitignore").write_text("".join(many[1:]) + "*" * 1000 + ".dae\n")
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bot/meshes/b.dae", "U408")
+    assert severity == Severity.WARNING and "... (1004 characters)')" in message, message
+    assert len(message) < 1000
+
+
 def test_a_mesh_named_with_the_words_of_a_note_is_judged_by_what_was_found(tmp_path):
     """A package the package.xml declares and a folder kept empty travel with the mesh's
     problem (``MeshProblem.declared``, ``kept_empty``), set where they are found; they were

@@ -26,7 +26,7 @@ from urdftool.description.packages import (containment_root, declaring_package, 
                                           written_from_above)
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
-from urdftool.errors import MeshProblem, PackageNotFound, similarity
+from urdftool.errors import MeshProblem, PackageNotFound, shown_word, similarity
 
 # a file of a ROS distribution's binary install: /opt/ros/DISTRO/share/PACKAGE/PATH
 _ROS_INSTALL = re.compile(r"/opt/ros/([^/]+)/share/([^/]+)/(.+)")
@@ -392,35 +392,50 @@ def _git_ignored(path: str) -> str:
     meshes their tools download (``*meshes*``). Read from the file's folder up to the
     repository's root, as git reads them: a pattern without ``/`` matches a name at any depth,
     one with ``/`` a path from its .gitignore's folder, one ending in ``/`` a folder; a
-    ``!`` pattern matching the file makes the answer "" (not said)."""
+    ``!`` pattern matching the file makes the answer "" (not said). A .gitignore of more than
+    :data:`MAX_IGNORE_PATTERNS` patterns is not matched (each missing mesh matched every
+    pattern: 60,000 of them stopped a check of 5 meshes at its budget): it may ignore the
+    file, which is said so, never an error it cannot be certain of."""
     root = os.fspath(containment_root(Path(os.path.dirname(path))))
     folder, found = os.path.dirname(path), ""
     while folder == root or folder.startswith(root.rstrip(os.sep) + os.sep):
         relative = os.path.relpath(path, folder).replace(os.sep, "/")
-        for pattern in _ignore_patterns(os.path.join(folder, ".gitignore")):
+        name = os.path.relpath(os.path.join(folder, ".gitignore"), root)
+        patterns = _ignore_patterns(os.path.join(folder, ".gitignore"))
+        if patterns is None:
+            found = found or (f"the repository's {name} holds more than "
+                              f"{MAX_IGNORE_PATTERNS:,} patterns (not matched), any of which may "
+                              "ignore it")
+            patterns = ()
+        for pattern in patterns:
             negated = pattern.startswith("!")
             if _ignores(pattern.removeprefix("!"), relative):
                 if negated:
                     return ""
-                found = found or (f"the repository's "
-                                  f"{os.path.relpath(os.path.join(folder, '.gitignore'), root)}"
-                                  f" ignores it ('{pattern}')")
+                found = found or (f"the repository's {name} ignores it "
+                                  f"('{shown_word(pattern)}')")
         if folder == root:
             break
         folder = os.path.dirname(folder)
     return found
 
 
-def _ignore_patterns(name: str) -> list[str]:
-    """The patterns of the .gitignore ``name`` (none when it is no file)."""
+MAX_IGNORE_PATTERNS = 5000  # [patterns] of one .gitignore matched (git's own has about 200)
+
+
+@per_run
+def _ignore_patterns(name: str) -> tuple[str, ...] | None:
+    """The patterns of the .gitignore ``name`` (none when it is no file), read once a run;
+    None when it holds more than :data:`MAX_IGNORE_PATTERNS`."""
     if kind_of(name) != "file":
-        return []
+        return ()
     try:
         text = read_regular(name, 1 << 20).decode("utf-8", "replace")
     except OSError:
-        return []
+        return ()
     lines = (line.rstrip() for line in text.splitlines())
-    return [line for line in lines if line and not line.startswith("#")]
+    patterns = tuple(line for line in lines if line and not line.startswith("#"))
+    return patterns if len(patterns) <= MAX_IGNORE_PATTERNS else None
 
 
 def _ignores(pattern: str, relative: str) -> bool:
