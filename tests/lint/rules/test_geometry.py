@@ -173,6 +173,11 @@ def test_a_mesh_the_repositorys_gitignore_ignores_is_not_certainly_missing(tmp_p
     (tmp_path / ".gitignore").unlink()
     (tmp_path / "meshes" / ".gitignore").write_text("*.dae\n")  # one below the root
     assert u408()[0] == Severity.WARNING
+    # a link is no .gitignore to git (2.32 on), nor to urdftool: one leading outside the
+    # repository was read, its matching line quoted
+    (tmp_path / "meshes" / ".gitignore").rename(tmp_path.parent / f"{tmp_path.name}.outside")
+    (tmp_path / "meshes" / ".gitignore").symlink_to(tmp_path.parent / f"{tmp_path.name}.outside")
+    assert u408()[0] == Severity.ERROR
 
 
 def test_a_gitignore_of_more_patterns_than_are_matched_may_ignore_the_mesh(tmp_path):

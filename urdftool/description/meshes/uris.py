@@ -426,8 +426,10 @@ MAX_IGNORE_PATTERNS = 5000  # [patterns] of one .gitignore matched (git's own ha
 @per_run
 def _ignore_patterns(name: str) -> tuple[str, ...] | None:
     """The patterns of the .gitignore ``name`` (none when it is no file), read once a run;
-    None when it holds more than :data:`MAX_IGNORE_PATTERNS`."""
-    if kind_of(name) != "file":
+    None when it holds more than :data:`MAX_IGNORE_PATTERNS`. A symbolic link is none, as git
+    (2.32 on) reads a .gitignore only without following one: a committed link to a file
+    outside the repository was read, and its line that matched a mesh quoted."""
+    if kind_of(name, follow=False) != "file":
         return ()
     try:
         text = read_regular(name, 1 << 20).decode("utf-8", "replace")
