@@ -167,6 +167,8 @@ def test_a_mesh_the_repositorys_gitignore_ignores_is_not_certainly_missing(tmp_p
         severity, message = u408()
         assert severity == Severity.WARNING, (pattern, message)
         assert f".gitignore ignores it ('{pattern}')" in message, message
+    (tmp_path / ".gitignore").write_text("\ufeff*.dae\r\n")  # as git reads it: no BOM, no CR
+    assert u408()[0] == Severity.WARNING
     for pattern in ("*.stl", "/base.dae", "other/", "*.dae\n!base.dae"):
         (tmp_path / ".gitignore").write_text(pattern + "\n")
         assert u408()[0] == Severity.ERROR, pattern

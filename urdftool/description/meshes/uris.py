@@ -432,8 +432,8 @@ def _ignore_patterns(name: str) -> tuple[str, ...] | None:
     if kind_of(name, follow=False) != "file":
         return ()
     try:
-        text = read_regular(name, 1 << 20).decode("utf-8", "replace")
-    except OSError:
+        text = read_regular(name, 1 << 20).decode("utf-8", "replace").removeprefix("\ufeff")
+    except OSError:  # (git skips a UTF-8 byte order mark: its first pattern is a pattern)
         return ()
     lines = (line.rstrip() for line in text.splitlines())
     patterns = tuple(line for line in lines if line and not line.startswith("#"))
