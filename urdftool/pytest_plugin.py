@@ -17,6 +17,7 @@ pytest run in the same environment nothing.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -78,14 +79,21 @@ def _not_regular(config, folder: Path) -> list[Path]:
 
 def _node_id(parent, file_path: Path) -> str:
     """The node ID pytest would give ``file_path`` (relative to the root folder, ``/``
-    between folders), through the terminal-text escaper (see :class:`RobotFile`)."""
+    between folders), through the terminal-text escaper (see :class:`RobotFile`), with no
+    ``::`` left in it: pytest reads what follows one as names and a ``[`` after it as the
+    parameters, so a robot file named ``a::b[1].urdf`` was the path ``a``, and its item's ID
+    a ValueError that interrupted the whole session's collection. A colon before another is
+    written ``\\x3a``, as the escaper writes one that starts a line."""
     from urdftool.report.escape import text
 
     try:
         relative = file_path.relative_to(parent.config.rootpath).as_posix()
     except ValueError:
         relative = file_path.as_posix()
-    return text(relative)
+    return _COLON_BEFORE_COLON.sub(r"\\x3a", text(relative))
+
+
+_COLON_BEFORE_COLON = re.compile(":(?=:)")
 
 
 def _top_level(config, folder: Path) -> set[Path]:

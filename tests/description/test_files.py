@@ -405,3 +405,15 @@ def test_a_file_no_one_may_write_is_not_replaced(tmp_path):
     target.chmod(0o644)
     files.write_file(target, "<robot name='x'/>", rewrites=True)
     assert target.read_text() == "<robot name='x'/>"
+
+
+@pytest.mark.parametrize("name", ["r" * 250 + ".urdf", "é" * 125 + ".urdf",
+                                  os.fsdecode(b"\xff" * 250 + b".urdf")])
+def test_a_file_whose_name_fills_the_folders_longest_name_is_written(tmp_path, name):
+    """``check --fix`` of a robot named with 255 bytes was "File name too long": the temporary
+    file beside it was named ``.NAME.XXXXXXXX.tmp``, its name and 14 more bytes."""
+    target = tmp_path / name
+    target.write_text("<robot/>")
+    files.write_file(target, "<robot name='x'/>", rewrites=True)
+    assert target.read_text() == "<robot name='x'/>"
+    assert [p.name for p in tmp_path.iterdir()] == [name]

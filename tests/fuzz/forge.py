@@ -574,9 +574,10 @@ def terminal(text: str, where: str, github: bool = False) -> list[str]:
     for match in re.finditer("RICH(MARK|LINK)", text):
         before = text[max(0, match.start() - 40):match.start()]
         # the tag as written (escaped, percent-encoded in a URI, or a name made an identifier:
-        # bold_red_RICHMARK), not eaten
-        if not re.search(r"(bold[ _]red|bold|link[=_]https[:/_]+evil[._]example)(\]|%5D|_+)$",
-                         before):
+        # bold_red_RICHMARK; SARIF's escaped bracket, its backslash doubled by JSON: \\]), not
+        # eaten
+        if not re.search(r"(bold[ _]red|bold|link[=_]https[:/_]+evil[._]example)"
+                         r"((\\\\)?\]|%5D|_+)$", before):
             found.append(f"{where}: rich markup around {match.group()} was interpreted")
             break
     if "\U0001f44d" in text:

@@ -102,3 +102,20 @@ def test_no_console_breaks_a_name_or_a_location_on_a_narrow_terminal(monkeypatch
         lines = _plain(console.file.getvalue()).splitlines()
         assert lines[:2] == [f"poses relative to {name}", name], lines
         assert f"{where}: joint '{name}': a finding" in lines
+
+
+def test_a_terminal_of_no_columns_is_drawn_80_wide_not_left_empty(monkeypatch):
+    """``COLUMNS=0`` on a terminal (a script's ``export COLUMNS=$(tput cols)`` where tput knows
+    no width): rich drew in no columns and printed nothing, a check's findings and summary
+    gone with exit 1, fk's poses gone with exit 0."""
+    from urdftool.report.console import plain_console, print_table, wide_console
+
+    for make in (wide_console, lambda: plain_console(_Stream(True))):
+        monkeypatch.setattr("sys.stdout", _Stream(True))
+        monkeypatch.setenv("COLUMNS", "0")
+        console = make()
+        assert console.is_terminal and console.width == 80
+        print_table(console, "poses", HEADERS, ROWS)
+        console.print("robot.urdf:3: error U204 a finding")
+        text = _plain(console.file.getvalue())
+        assert "a_much_longer_link_name" in text and "robot.urdf:3: error U204" in text, text

@@ -119,6 +119,17 @@ def test_xml_and_svg_values_make_documents_that_parse_and_say_the_same():
     assert root[0].text == root[0].get("a") == escape.printable(HOSTILE)
 
 
+@pytest.mark.parametrize("char", ["\x00", "\x1f", "\ud800", "\udcff", "\ufffe", "\uffff"])
+def test_every_character_xml_cannot_hold_is_escaped_for_xml_and_svg(char):
+    """A file named with U+FFFE or U+FFFF (valid UTF-8, outside XML 1.0's characters) ended
+    ``check -f junit`` with lxml's ValueError traceback and no report."""
+    element = etree.Element("failure", message=escape.xml(f"a{char}.urdf"))
+    element.text = escape.xml(char)
+    assert etree.fromstring(etree.tostring(element)).get("message") == \
+        escape.text(f"a{char}.urdf") != f"a{char}.urdf"
+    etree.fromstring(f'<svg><text a="{escape.svg(char)}">{escape.svg(char)}</text></svg>')
+
+
 def test_xml_documents_keep_their_data_and_lose_their_forged_lines():
     root = etree.fromstring('<r a="x&#10;y">\n::error::x\n<!--\n ::c -->\u202e\x85</r>'.encode())
     document = etree.tostring(root, encoding="unicode")

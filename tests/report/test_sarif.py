@@ -127,3 +127,16 @@ def test_regions_carry_the_column_when_known(column):
                                                Location("a.urdf", 3, column=column))])])
     region = log["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["region"]
     assert region == ({"startLine": 3} if column is None else {"startLine": 3, "startColumn": 5})
+
+
+@pytest.mark.parametrize("name", ["[click](0)", "[x](https://example.com/a)", "{0}", "}{1}{",
+                                  "\\[x\\](0)", "a\\", "[[{{}}]]"])
+def test_a_message_quoting_sarif_syntax_is_text_to_a_viewer_not_a_link_or_placeholder(name):
+    message = f"link '{name}' has no parent joint"
+    found = Finding("U108", "two-roots", Severity.ERROR, message,
+                    Location("a.urdf", 3, (Location("m.xacro", 2),)))
+    log = sarif([FileResult("a.urdf", [found])])
+    result = log["runs"][0]["results"][0]
+    text = result["message"]["text"]
+    assert sarif_schema.as_a_viewer_reads(text) == (message, [])
+    assert result["relatedLocations"][0]["message"]["text"] == "expanded from this macro call"

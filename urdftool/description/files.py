@@ -853,8 +853,8 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
     import tempfile  # only where a file is written (a re-run from the cache reads)
 
     try:
-        descriptor, temporary = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp",
-                                                 dir=folder)
+        descriptor, temporary = tempfile.mkstemp(prefix=_temporary_prefix(path.name, folder),
+                                                 suffix=".tmp", dir=folder)
     except OSError as error:
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
     try:
@@ -867,6 +867,19 @@ def write_file(path, data: str | bytes, rewrites: bool | frozenset = False,
     except OSError as error:
         os.unlink(temporary)
         raise UsageError(f"cannot write '{path}': {error.strerror}") from None
+
+
+def _temporary_prefix(name: str, folder: str) -> str:
+    """The start of the temporary file's name beside ``name``: ``.NAME.``, the name's bytes cut
+    so that with mkstemp's 8 characters and ``.tmp`` it fits the folder's longest name (a robot
+    named with 250 bytes was "File name too long" to ``--fix``: that name is the file
+    system's to allow, the temporary file's is ours)."""
+    try:
+        longest = os.pathconf(folder, "PC_NAME_MAX")
+    except (OSError, ValueError):
+        longest = 255
+    room = max(longest - len("..") - 8 - len(".tmp"), 1)
+    return f".{os.fsdecode(os.fsencode(name)[:room])}."
 
 
 def _keep_owner(descriptor: int, existing: os.stat_result) -> None:

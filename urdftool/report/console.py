@@ -109,13 +109,17 @@ def _guarded(console):
     own colours stand, and the renderers' markup() alone guards; rich never breaks a line
     there either (``soft_wrap``: a name or a ``file:line`` longer than the terminal is folded by
     the terminal, one line still, whole when copied or searched, not cut at a blank into a
-    line a piece of the name starts)."""
+    line a piece of the name starts). A terminal of no columns is 80 wide, rich's own width
+    where it cannot tell: rich took ``COLUMNS=0`` as said, and printed nothing at all (a
+    check's findings and its summary, with exit 1)."""
     from urdftool.report.escape import Lines
 
     console.soft_wrap = True
     if not console.is_terminal:
         console.width = 10_000
         console.file = Lines(console.file)
+    elif console.width < 1:  # COLUMNS=0 (a script's `export COLUMNS=$(tput cols)` where tput
+        console.width = 80  # knows no width): rich drew everything in no columns, nothing
     return console
 
 

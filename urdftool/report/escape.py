@@ -35,6 +35,9 @@ Graphviz DOT                  :func:`dot`         a quoted ID ended early, DOT's
                                                   ID (one to one)
 YAML documents                :func:`yaml_text`   a scalar folded or broken onto a line of its
                                                   own; non-printable characters
+SARIF message text           :func:`sarif_text`  SARIF's own grammar inside the JSON string:
+                                                  ``[text](0)`` an embedded link, ``{0}`` a
+                                                  placeholder, ``\\[`` a bracket
 JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact, the
 rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``); a name's
                               (``paired``: LSP)   undecodable byte (a lone surrogate) is U+FFFD
@@ -53,12 +56,14 @@ import io
 import re
 
 # Characters that move the cursor, end a line, change the terminal's state or reorder text
-# (Unicode categories Cc, Cf, Cs, Zl, Zp): a name in a robot file that holds one could forge
-# report lines ("::error ...", "no problems found"), hide text, or make a report unwritable.
+# (Unicode categories Cc, Cf, Cs, Zl, Zp), and U+FFFE and U+FFFF, the two characters besides
+# those that XML 1.0 cannot hold (a file named with one made lxml refuse the JUnit report): a
+# name in a robot file that holds one could forge report lines ("::error ...", "no problems
+# found"), hide text, or make a report unwritable.
 _UNPRINTABLE = re.compile(
     "[\x00-\x1f\x7f-\x9f\xad\u0600-\u0605\u061c\u06dd\u070f\u0890\u0891\u08e2\u180e"
     "\u200b-\u200f\u2028-\u202e\u2060-\u2064\u2066-\u206f\ud800-\udfff\ufeff"
-    "\ufff9-\ufffb\U000110bd\U000110cd\U00013430-\U0001343f\U0001bca0-\U0001bca3"
+    "\ufff9-\ufffb\ufffe\uffff\U000110bd\U000110cd\U00013430-\U0001343f\U0001bca0-\U0001bca3"
     "\U0001d173-\U0001d17a\U000e0001\U000e0020-\U000e007f]")
 _SHORT = {"\n": "\\n", "\r": "\\r", "\t": "\\t"}
 
@@ -216,6 +221,17 @@ def svg(value) -> str:
 _FORMULA = ("=", "+", "-", "@")
 
 
+def sarif_text(value) -> str:
+    """A SARIF plain text message (a result's, a related location's): the text exact for a SARIF
+    viewer. SARIF reads ``[text](id)`` as an embedded link (3.11.6: to a related location or a
+    URI; ``\\[``, ``\\]`` and ``\\\\`` are a bracket and a backslash) and ``{0}`` as a placeholder
+    (3.11.5: ``{{`` and ``}}`` are braces), so each is escaped as SARIF says: a link named
+    ``[click](0)`` stays text, a name holding ``{0}`` or a backslash stays what it was. The JSON
+    encoder escapes the rest."""
+    return value.replace("\\", "\\\\").replace("[", "\\[").replace("]", "\\]") \
+        .replace("{", "{{").replace("}", "}}")
+
+
 def csv_cell(value) -> str:
     """A text cell of CSV (csv.writer quotes it): no line break, and a leading ``'`` before
     what a spreadsheet would run as a formula."""
@@ -254,5 +270,5 @@ def yaml_text(data) -> str:
     return yaml.dump(data, Dumper=Dumper, sort_keys=False, width=float("inf"))
 
 
-__all__ = ["Lines", "csv_cell", "dot", "lines", "markdown", "markup", "printable", "svg", "text",
-           "workflow", "write_xml", "xml", "yaml_text"]
+__all__ = ["Lines", "csv_cell", "dot", "lines", "markdown", "markup", "printable", "sarif_text",
+           "svg", "text", "workflow", "write_xml", "xml", "yaml_text"]

@@ -549,7 +549,8 @@ def _legend(draw, layers: list[Layer]) -> None:
 PIXEL_BYTES = 44
 
 
-def check_fits(size: tuple[int, int], layers: int = 1) -> None:
+def check_fits(size: tuple[int, int], layers: int = 1,
+               smaller: str = "a smaller --size") -> None:
     """UsageError when a picture of ``size`` (width, height) [pixels] of ``layers`` would not
     fit in what this process's memory budget (its address-space cap) leaves, said before
     anything is drawn with the largest square that fits: the range of ``--size`` follows the
@@ -569,7 +570,7 @@ def check_fits(size: tuple[int, int], layers: int = 1) -> None:
         raise UsageError(
             f"a picture of {size[0]}x{size[1]} pixels needs about {format_memory(needed)} of "
             f"memory, more than the budget of {format_memory(cap)} leaves "
-            f"({format_memory(left)}: {side}x{side} at most); a smaller --size, or a larger "
+            f"({format_memory(left)}: {side}x{side} at most); {smaller}, or a larger "
             "--max-memory")
 
 

@@ -40,14 +40,15 @@ def _layout(matrix, title: str):
     colour, opacity, tooltip)`` or ``("text", x, y, text, size, anchor, vertical)``."""
     links = matrix.links
     index = {name: i for i, name in enumerate(links)}
-    label = max((len(name) for name in links), default=4) * 7 + 10
+    shown = {name: _label(name) for name in links}  # (the whole names in the cells' tooltips)
+    label = max((len(name) for name in shown.values()), default=4) * 7 + 10
     top = TITLE + label
     size = len(links) * CELL
     items = [("text", 4, 16, title, 13, "start", False)]
     for name, i in index.items():
         middle = i * CELL + CELL * 0.75
-        items.append(("text", label - 4, top + middle, name, 11, "end", False))
-        items.append(("text", label + middle, top - 4, name, 11, "start", True))
+        items.append(("text", label - 4, top + middle, shown[name], 11, "end", False))
+        items.append(("text", label + middle, top - 4, shown[name], 11, "start", True))
     for pair in matrix.pairs:
         i, j = index[pair.link1], index[pair.link2]
         tip = (f"{pair.link1} / {pair.link2}: {pair.reason or 'enabled'}, "
@@ -69,6 +70,16 @@ def _layout(matrix, title: str):
     items.append(("text", legend, top + 5 * 20 + 11, "enabled: darker = collides more often",
                   11, "start", False))
     return legend + 230, top + size + 20, items
+
+
+LABEL = 64  # [characters] of a link's name written beside a row or above a column
+
+
+def _label(name: str) -> str:
+    """A link's name as a row's or column's label: cut at :data:`LABEL` characters. The
+    margins grow with the longest label: a name of 100,000 characters made the matrix's
+    picture 1.4 million pixels a side (out of memory, U018, for a PNG)."""
+    return name if len(name) <= LABEL else name[:LABEL - 1] + "\u2026"
 
 
 def svg(matrix, title: str) -> str:
@@ -136,6 +147,9 @@ def png_of(width: int, height: int, items, scale: int = 2) -> bytes:
 
         raise PlotError(f"PNG output needs Pillow ({install_command('analysis')}); an .svg "
                         "needs nothing") from None
+    from urdftool.report.picture import check_fits
+
+    check_fits((width * scale, height * scale), smaller="an .svg (drawn by the viewer)")
     image = Image.new("RGB", (width * scale, height * scale), "white")
     draw = ImageDraw.Draw(image)
     fonts = {}

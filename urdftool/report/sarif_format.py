@@ -15,6 +15,7 @@ from pathlib import Path
 from urllib.parse import quote
 
 from urdftool import __version__
+from urdftool.report.escape import sarif_text
 from urdftool.report.json_output import write_json
 from urdftool.report.summary import all_findings
 
@@ -72,7 +73,7 @@ def as_dict(results) -> dict:
             "ruleId": finding.code,
             "ruleIndex": index[finding.code],
             "level": _LEVELS[finding.severity.value],
-            "message": {"text": finding.message},
+            "message": {"text": sarif_text(finding.message)},
             "locations": [_location(finding.location)],
         }
         if finding.target is not None:  # the simulator a portability finding is about

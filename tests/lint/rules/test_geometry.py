@@ -167,12 +167,41 @@ def test_a_mesh_the_repositorys_gitignore_ignores_is_not_certainly_missing(tmp_p
         severity, message = u408()
         assert severity == Severity.WARNING, (pattern, message)
         assert f".gitignore ignores it ('{pattern}')" in message, message
+    (tmp_path / ".gitignore").write_text("\ufeff*.dae\r\n")  # as git reads it: no BOM, no CR
+    assert u408()[0] == Severity.WARNING
     for pattern in ("*.stl", "/base.dae", "other/", "*.dae\n!base.dae"):
         (tmp_path / ".gitignore").write_text(pattern + "\n")
         assert u408()[0] == Severity.ERROR, pattern
     (tmp_path / ".gitignore").unlink()
     (tmp_path / "meshes" / ".gitignore").write_text("*.dae\n")  # one below the root
     assert u408()[0] == Severity.WARNING
+    # a link is no .gitignore to git (2.32 on), nor to urdftool: one leading outside the
+    # repository was read, its matching line quoted
+    (tmp_path / "meshes" / ".gitignore").rename(tmp_path.parent / f"{tmp_path.name}.outside")
+    (tmp_path / "meshes" / ".gitignore").symlink_to(tmp_path.parent / f"{tmp_path.name}.outside")
+    assert u408()[0] == Severity.ERROR
+
+
+def test_a_gitignore_of_more_patterns_than_are_matched_may_ignore_the_mesh(tmp_path):
+    """A .gitignore of 60,000 patterns (730 KB) stopped a check of 5 missing meshes at its 60 s
+    budget: each mesh matched every pattern again (fnmatch's cache holds 32,768). Past
+    MAX_IGNORE_PATTERNS it is not matched, and may ignore the mesh: not certain, no error;
+    a pattern quoted is cut."""
+    from urdftool.description.meshes import uris
+    from urdftool.diagnostics import Severity
+
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "package.xml").write_text('<package format="2"><name>bot</name></package>')
+    (tmp_path / "CMakeLists.txt").write_text("install(DIRECTORY meshes DESTINATION share/bot)\n")
+    _stl(tmp_path / "meshes" / "other.stl")
+    many = [f"p{i}x*/\n" for i in range(uris.MAX_IGNORE_PATTERNS)]
+    (tmp_path / ".gitignore").write_text("".join(many) + "z*\n")
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bot/meshes/b.dae", "U408")
+    assert severity == Severity.WARNING and "(not matched), any of which may ignore it" in message
+    (tmp_path / ".gitignore").write_text("".join(many[1:]) + "*" * 1000 + ".dae\n")
+    [(severity, message)] = _u407(tmp_path / "robot.urdf", "package://bot/meshes/b.dae", "U408")
+    assert severity == Severity.WARNING and "... (1004 characters)')" in message, message
+    assert len(message) < 1000
 
 
 def test_a_gitignore_is_read_as_git_reads_it(tmp_path):

@@ -25,7 +25,7 @@ from urdftool.description.packages import (containment_root, declaring_package, 
                                           package_uri_parts, written_from_above)
 from urdftool.description.run_memo import per_run
 from urdftool.diagnostics import display_path
-from urdftool.errors import MeshProblem, PackageNotFound, similarity
+from urdftool.errors import MeshProblem, PackageNotFound, shown_word, similarity
 
 # a file of a ROS distribution's binary install: /opt/ros/DISTRO/share/PACKAGE/PATH
 _ROS_INSTALL = re.compile(r"/opt/ros/([^/]+)/share/([^/]+)/(.+)")
@@ -402,7 +402,10 @@ def _git_ignored(path: str) -> str:
     folder from the repository's root down, then the file; for each, the deepest .gitignore
     with a pattern matching it, and in it the last such pattern, says whether it is ignored
     (a ``!`` pattern: not); a folder ignored ignores all below it, which no ``!`` pattern
-    below takes back (git reads no .gitignore inside it)."""
+    below takes back (git reads no .gitignore inside it). A .gitignore of more than
+    :data:`MAX_IGNORE_PATTERNS` patterns is not matched (60,000 of them stopped a check of 5
+    meshes at its budget): it may ignore the file, which is said so, never an error it cannot
+    be certain of."""
     root = os.fspath(containment_root(Path(os.path.dirname(path))))
     parts = os.path.relpath(path, root).replace(os.sep, "/").split("/")
     if parts[0] in ("", ".", ".."):
@@ -411,9 +414,14 @@ def _git_ignored(path: str) -> str:
         folder = end < len(parts)
         for level in range(end - 1, -1, -1):  # the deepest .gitignore first
             name = os.path.join(root, *parts[:level], ".gitignore")
+            patterns = _ignore_patterns(name)
+            if patterns is None:
+                return (f"the repository's {os.path.relpath(name, root)} holds more than "
+                        f"{MAX_IGNORE_PATTERNS:,} patterns (not matched), any of which may "
+                        "ignore it")
             entry = "/".join(parts[level:end])  # (relative to that .gitignore's folder)
             decided = next(((negated, text) for negated, pattern, folders_only, text in
-                            reversed(_ignore_patterns(name)) if (folder or not folders_only)
+                            reversed(patterns) if (folder or not folders_only)
                             and pattern.fullmatch(entry)), None)
             if decided is not None:
                 break
@@ -421,20 +429,30 @@ def _git_ignored(path: str) -> str:
             continue
         negated, text = decided
         if not negated:  # (the file, or a folder above it)
-            return f"the repository's {os.path.relpath(name, root)} ignores it ('{text}')"
+            return (f"the repository's {os.path.relpath(name, root)} ignores it "
+                    f"('{shown_word(text)}')")
     return ""
 
 
+MAX_IGNORE_PATTERNS = 5000  # [patterns] of one .gitignore matched (git's own has about 200)
+
+
 @per_run
-def _ignore_patterns(name: str) -> tuple:
+def _ignore_patterns(name: str) -> tuple | None:
     """(negated, regular expression, folders only, text) of each pattern of the .gitignore
-    ``name``, in its order (none when it is no file); read once per run."""
-    if kind_of(name) != "file":
+    ``name``, in its order (none when it is no file), read once a run; None when it holds
+    more than :data:`MAX_IGNORE_PATTERNS`. A symbolic link is none, as git (2.32 on) reads a
+    .gitignore only without following one: a committed link to a file outside the
+    repository was read, and its line that matched a mesh quoted."""
+    if kind_of(name, follow=False) != "file":
         return ()
     try:
-        text = read_regular(name, 1 << 20).decode("utf-8", "replace")
-    except OSError:
+        text = read_regular(name, 1 << 20).decode("utf-8", "replace").removeprefix("\ufeff")
+    except OSError:  # (git skips a UTF-8 byte order mark: its first pattern is a pattern)
         return ()
+    if sum(1 for line in text.splitlines() if line.strip() and not line.startswith("#")) > \
+            MAX_IGNORE_PATTERNS:
+        return None
     found = []
     for line in text.splitlines():
         line = re.sub(r"(?<!\\) +$", "", line)  # trailing spaces, unless escaped
