@@ -12,6 +12,7 @@ A URI is resolved and checked once per robot, a path once per run.
 
 from __future__ import annotations
 
+import fnmatch
 import os
 import re
 from dataclasses import replace
@@ -468,43 +469,43 @@ def _ignore_patterns(name: str) -> tuple | None:
 
 
 def _gitignore_pattern(body: str):
-    """The regular expression matching what gitignore pattern ``body`` (no ``!``, no trailing
-    ``/``) matches, for paths relative to its .gitignore's folder with ``/``: without a ``/``
-    it matches a name at any depth; ``*`` and ``?`` match within a name, ``**`` across
-    folders (``**/``, ``/**/``, ``/**``); ``[...]`` a set; ``\\`` escapes."""
-    anchored = "/" in body
-    body = body.removeprefix("/")
-    out, at = [], 0
-    while at < len(body):
-        c = body[at]
-        if body.startswith("**/", at) and (at == 0 or body[at - 1] == "/"):
-            out.append("(?:.*/)?")
-            at += 3
-        elif body.startswith("**", at) and at + 2 == len(body) and (at == 0 or
-                                                                      body[at - 1] == "/"):
-            out.append(".*")
-            at += 2
-        elif c == "*":
-            out.append("[^/]*")
-            at += 1
-        elif c == "?":
-            out.append("[^/]")
-            at += 1
-        elif c == "[" and "]" in body[at + 2:]:
-            close = body.index("]", at + 2)
-            inner = body[at + 1:close]
-            negate = inner[:1] in ("!", "^")
-            inner = inner[1:] if negate else inner
-            out.append("[" + ("^" if negate else "") + inner.replace("\\", "\\\\") + "]")
-            at = close + 1
-        elif c == "\\" and at + 1 < len(body):
-            out.append(re.escape(body[at + 1]))
-            at += 2
-        else:
-            out.append(re.escape(c))
-            at += 1
-    expression = "".join(out)
-    return re.compile(expression if anchored else "(?:.*/)?" + expression, re.DOTALL)
+    """A matcher of what gitignore pattern ``body`` (no ``!``, no trailing ``/``) matches,
+    for paths relative to its .gitignore's folder with ``/`` (its ``fullmatch``): without a
+    ``/`` it matches a name at any depth; ``*``, ``?`` and ``[...]`` match within a name (as
+    :func:`fnmatch.fnmatchcase` matches one, in time linear in its stars), ``**`` across
+    folders; a leading ``\\`` escapes ``!`` or ``#``. Matched name by name: a regular
+    expression of the whole pattern backtracked exponentially on ``*a*a*a*a*b``."""
+    if body[:2] in ("\\!", "\\#"):
+        body = body[1:]
+    parts = tuple(body.removeprefix("/").split("/"))
+    if "/" not in body:
+        parts = ("**", *parts)
+    return _GlobMatcher(tuple(part for i, part in enumerate(parts)
+                              if part != "**" or i == 0 or parts[i - 1] != "**"))
+
+
+class _GlobMatcher:
+    """A gitignore pattern's names (``**`` for any folders), matched against a path."""
+
+    __slots__ = ("parts",)
+
+    def __init__(self, parts: tuple) -> None:
+        self.parts = parts
+
+    def fullmatch(self, path: str) -> bool:
+        names, parts = path.split("/"), self.parts
+        # the positions of the path each prefix of the pattern can end at (a set per step:
+        # at most len(names) + 1 of them, so len(parts) * len(names) name tests at most)
+        reached = {0}
+        for part in parts:
+            if part == "**":
+                reached = set(range(min(reached), len(names) + 1)) if reached else set()
+            else:
+                reached = {at + 1 for at in reached
+                           if at < len(names) and fnmatch.fnmatchcase(names[at], part)}
+            if not reached:
+                return False
+        return len(names) in reached
 
 
 _PLACEHOLDERS = (".gitkeep", ".keep", ".gitignore", ".placeholder", ".empty")
