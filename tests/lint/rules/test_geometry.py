@@ -210,7 +210,8 @@ def test_a_gitignore_is_read_as_git_reads_it(tmp_path):
     it (gitignore(5)). The first reading returned at the first ``!`` pattern met, from the
     file's folder up: ``!base.dae`` then ``*.dae`` (git: ignored) and a root ``meshes/`` with
     ``!base.dae`` inside it (git: ignored, the folder's .gitignore unread) were certain
-    errors; ``*`` crossed folders in an anchored pattern."""
+    errors; ``*`` crossed folders in an anchored pattern; a pattern of many stars is matched in
+    time linear in them (a regular expression of it backtracked without end)."""
     from urdftool.diagnostics import Severity
 
     (tmp_path / ".git").mkdir()
@@ -226,6 +227,8 @@ def test_a_gitignore_is_read_as_git_reads_it(tmp_path):
         ("meshes/*.dae", None, "meshes/arm/base.dae", Severity.ERROR),
         ("meshes/**/*.dae", None, "meshes/arm/base.dae", Severity.WARNING),
         ("meshes/**", None, "meshes/arm/base.dae", Severity.WARNING),
+        ("meshes/**\n!meshes/base.dae", None, "meshes/base.dae", Severity.ERROR),
+        ("*a" * 30 + "*b.dae", None, "meshes/" + "a" * 40 + ".dae", Severity.ERROR),
         ("/arm/", None, "meshes/arm/base.dae", Severity.ERROR),
         ("arm/", None, "meshes/arm/base.dae", Severity.WARNING),
         ("base.da[ef]", None, "meshes/base.dae", Severity.WARNING),

@@ -496,10 +496,12 @@ class _GlobMatcher:
         names, parts = path.split("/"), self.parts
         # the positions of the path each prefix of the pattern can end at (a set per step:
         # at most len(names) + 1 of them, so len(parts) * len(names) name tests at most)
-        reached = {0}
-        for part in parts:
-            if part == "**":
-                reached = set(range(min(reached), len(names) + 1)) if reached else set()
+        reached, last = {0}, len(parts) - 1
+        for index, part in enumerate(parts):
+            if part == "**":  # (a trailing one, after a name: "foo/**" holds one at least,
+                # not foo itself, whose files a "!" pattern may then take back)
+                trailing = index == last and index > 0
+                reached = set(range(min(reached) + trailing, len(names) + 1))
             else:
                 reached = {at + 1 for at in reached
                            if at < len(names) and fnmatch.fnmatchcase(names[at], part)}
