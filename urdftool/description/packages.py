@@ -366,6 +366,12 @@ def build_tools(path) -> tuple[tuple[int, str, Path], ...]:
 _PACKAGE_ELEMENT = re.compile(rb"<package[\s>]")  # a ROS package manifest's root (REP 127, 140, 149)
 
 
+def _foreign(found: tuple[str, bytes]) -> bool:
+    """Whether a folder's manifest (:func:`_manifest_of`'s (file name, bytes)) is a package.xml
+    that is no ROS package manifest (no ``<package>`` element: another tool's file)."""
+    return found[0] == "package.xml" and not _PACKAGE_ELEMENT.search(found[1])
+
+
 def manifest_said(folder, name: str | None = None) -> str:
     """What the folder ``folder`` (None: no package) holds as a ROS package manifest, in the
     words a message says when that manifest does not settle its question: "no package.xml or
@@ -380,7 +386,7 @@ def manifest_said(folder, name: str | None = None) -> str:
     if found is None:
         return f"no {MANIFESTS_SAID}"
     file, data = found
-    if file == "package.xml" and not _PACKAGE_ELEMENT.search(data):
+    if _foreign(found):
         return "a package.xml that is not a ROS package manifest (no <package> element)"
     declared = package_name(Path(folder))
     if name is not None:
@@ -403,7 +409,7 @@ def declaring_package(path, package: str) -> tuple[str | None, bool, str]:
     ``package://``)."""
     folder = package_of(path) if path else None
     found = _manifest_of(folder) if folder is not None else None
-    if found is None or found[0] == "package.xml" and not _PACKAGE_ELEMENT.search(found[1]):
+    if found is None or _foreign(found):
         return None, False, "package.xml"  # (another tool's package.xml: rosdep reads none)
     return package_name(folder), package in (declared_dependencies(folder) or ()), found[0]
 

@@ -280,6 +280,18 @@ def _u515(tmp_path, low: str, high: str, limits: str = 'lower="-1" upper="1"') -
     return sorted((f.message for f in findings), key=lambda m: "max" in m)
 
 
+def _no_interface_findings(tmp_path, package: str | None) -> list:
+    """U503's findings on a head joint's transmission without a <hardwareInterface>, in a
+    repository with the ``package`` manifest (None: none)."""
+    body = ('<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
+            '<joint name="head_joint"/><actuator name="m"/></transmission>')
+    files = {"robot.urdf": HEAD_ROBOT.format(body=body)}
+    if package:
+        files["package.xml"] = package
+    (tmp_path / ".git").mkdir()
+    return check_folder(tmp_path, files, select=("U503",))[1]
+
+
 @pytest.mark.parametrize("package, severity", [
     (None, Severity.WARNING),  # nothing says ROS runs it: Drake reads it without an interface
     ("<package format='2'><name>arm</name><buildtool_depend>catkin</buildtool_depend></package>",
@@ -289,13 +301,7 @@ def test_a_transmission_without_an_interface_is_an_error_where_ros_1_runs_it(
         tmp_path, package, severity):
     # kinova_drake's Gen3 models (copied into a pydrake project, no package.xml): seven U503
     # errors each for an interface only ROS 1's ros_control reads
-    body = ('<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
-            '<joint name="head_joint"/><actuator name="m"/></transmission>')
-    files = {"robot.urdf": HEAD_ROBOT.format(body=body)}
-    if package:
-        files["package.xml"] = package
-    (tmp_path / ".git").mkdir()
-    _, findings = check_folder(tmp_path, files, select=("U503",))
+    findings = _no_interface_findings(tmp_path, package)
     assert [(f.code, f.severity) for f in findings] == [("U503", severity)]
     assert findings[0].message.endswith("joint 'head_joint' has no <hardwareInterface>; e.g. "
                                         "hardware_interface/PositionJointInterface")
@@ -313,13 +319,7 @@ def test_a_transmission_without_an_interface_is_an_error_where_ros_1_runs_it(
      "<package> element); no launch file"),
 ])
 def test_nothing_saying_ros_runs_the_robot_says_what_package_xml_there_is(tmp_path, package, said):
-    body = ('<transmission name="t"><type>transmission_interface/SimpleTransmission</type>'
-            '<joint name="head_joint"/><actuator name="m"/></transmission>')
-    files = {"robot.urdf": HEAD_ROBOT.format(body=body)}
-    if package:
-        files["package.xml"] = package
-    (tmp_path / ".git").mkdir()
-    _, findings = check_folder(tmp_path, files, select=("U503",))
+    findings = _no_interface_findings(tmp_path, package)
     assert [(f.code, f.severity) for f in findings] == [("U503", Severity.WARNING)]
     assert said in findings[0].message
 
