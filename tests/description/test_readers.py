@@ -85,3 +85,13 @@ def test_a_served_copy_in_a_ros_package_of_its_own_is_urdfdoms(tmp_path):
     path = _web(tmp_path, extra={"gui/frontend/public/urdf/package.xml": MANIFEST.format(
         name="copy", tools="<buildtool_depend>catkin</buildtool_depend>")})
     assert other_reader(load(str(path))) is None
+
+
+def test_a_web_application_above_the_robots_repository_says_nothing_of_it(tmp_path):
+    """A repository cloned into some web application's ``public`` folder: the application and
+    its sources are not the repository's, and were walked and read (up to 2,000 folders of
+    whatever lies above the clone) to make its errors warnings."""
+    _write(tmp_path, {"package.json": "{}", "src/model.ts": "fetch('/clone/r.urdf');\n",
+                      "public/clone/r.urdf": PLAIN})
+    (tmp_path / "public" / "clone" / ".git").mkdir()
+    assert other_reader(load(str(tmp_path / "public" / "clone" / "r.urdf"))) is None

@@ -24,8 +24,10 @@ from __future__ import annotations
 
 import os
 import re
+from pathlib import Path
 
 from urdftool.description.files import kind_of, read_regular, walk
+from urdftool.description.packages import containment_root
 from urdftool.description.ros_version import nothing_says_ros, ros_versions
 from urdftool.diagnostics import display_path
 from urdftool.records import Frozen
@@ -106,9 +108,12 @@ def _served(path: str) -> tuple[str, str, str, str] | None:
     source fetches; else None."""
     path = os.path.abspath(path)
     folder = os.path.dirname(path)
+    # (within the robot's repository: a package.json and sources above it are not its own)
+    root = os.path.abspath(containment_root(Path(folder)))
     while True:
         parent = os.path.dirname(folder)
-        if parent == folder:
+        if parent == folder or not (parent == root or parent.startswith(
+                root.rstrip(os.sep) + os.sep)):
             return None
         if os.path.basename(folder) in SERVED and kind_of(os.path.join(parent, "package.json")) \
                 == "file" and kind_of(os.path.join(parent, "package.xml")) != "file":
