@@ -574,6 +574,7 @@ def test_a_shape_drake_refuses_too_stays_an_error_in_a_file_drake_reads(tmp_path
 def test_a_browsers_copy_takes_what_drake_alone_takes_as_an_error(tmp_path):
     """A web page's copy (three.js urdf-loader) with parent 'world': the loader finds no such
     link either, so U105 stays an error there, while U202 is a warning."""
+    (tmp_path / ".git").mkdir()  # (the application is the repository's own)
     frontend = tmp_path / "frontend"
     (frontend / "src").mkdir(parents=True)
     (frontend / "public").mkdir()
