@@ -22,6 +22,21 @@ HEAD_ROBOT = """<robot name="r">
 """
 
 
+def served_copy(tmp_path: Path, text: str, name: str = "robot.urdf") -> Path:
+    """A robot file ``text`` that a web application of the repository at ``tmp_path`` serves
+    as it is (``frontend/public/NAME``) and its source fetches (three.js urdf-loader): a web
+    page reads it (urdftool.description.readers). Returns its path."""
+    (tmp_path / ".git").mkdir()  # (the application is the repository's own)
+    frontend = tmp_path / "frontend"
+    (frontend / "src").mkdir(parents=True)
+    (frontend / "public").mkdir()
+    (frontend / "package.json").write_text("{}")
+    (frontend / "src" / "model.ts").write_text(f"loader.load('/{name}');\n")
+    path = frontend / "public" / name
+    path.write_text(text)
+    return path
+
+
 def check_folder(folder: Path, files: dict, select=("U5", "U6", "U7", "U8"), controllers=(),
                  srdf=None, spec=None):
     """Write ``files`` (name -> text) into ``folder`` and check ``robot.urdf`` there.

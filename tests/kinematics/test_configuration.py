@@ -72,7 +72,7 @@ def test_a_row_lacking_many_names_lists_a_dozen_and_how_many():
 
     names = {f"j{i}": 0 for i in range(13)}
     with pytest.raises(ConfigError) as error:
-        config._json_rows(json.dumps([names, {}]), "q.json", "joint")
+        config._json_rows(json.dumps([names, {}]).encode(), "q.json", "joint")
     assert str(error.value) == ("q.json: row 2: row lacks j0, j1, j2, j3, j4, j5, j6, j7, j8, j9, "
                                 "j10, j11, ... (13 in all) (every row must name the same joints)")
 
@@ -175,21 +175,92 @@ def test_a_q_file_value_past_the_farthest_coordinate_is_said_as_the_files(run_cl
     assert "--q:" not in result.output
 
 
+def _read_measured(path):
+    """(names, table, the peak of memory allocated [bytes]) of reading the file of numbers
+    at ``path``."""
+    import tracemalloc
+
+    tracemalloc.start()
+    try:
+        read, table = config.read_table(str(path), "q-file", "joint")
+        return read, table, tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
 def test_a_file_of_numbers_is_converted_a_chunk_of_rows_at_a_time(tmp_path):
     """Every cell of a --q-file was held as a string at once, then as a float (433 MB for a
     16 MB file of 12,000 rows of 300 joints): what reading holds now is the text, the table
     and a chunk of rows, and the table is the one every row at once gives."""
-    import tracemalloc
-
     names = [f"j{i}" for i in range(300)]
     rows = [[("0.1", "-0.25", "1", "3e-2")[(r + c) % 4] for c in range(300)] for r in range(4000)]
     path = tmp_path / "q.csv"
     path.write_text(",".join(names) + "\n" + "".join(",".join(row) + "\n" for row in rows))
-    tracemalloc.start()
-    try:
-        read, table = config.read_table(str(path), "q-file", "joint")
-        peak = tracemalloc.get_traced_memory()[1]
-    finally:
-        tracemalloc.stop()
+    read, table, peak = _read_measured(path)
     assert read == names and np.array_equal(table, np.array(rows, dtype=float))
     assert peak < 4 * table.nbytes, (peak, table.nbytes)  # (every cell at once: 7.6 times)
+
+
+def test_a_json_file_of_numbers_is_read_an_element_of_its_list_at_a_time(tmp_path):
+    """The whole document was made at once as json reads it, every row a dict of floats (and
+    its text besides): 6.4 times the file's size at the peak; what reading holds now is the
+    file's bytes, a piece of its text, the table and a chunk of rows."""
+    import json
+
+    names = [f"j{i}" for i in range(50)]
+    rows = [[(0.1, -0.25, 1.0, 3e-2)[(r + c) % 4] for c in range(50)] for r in range(4000)]
+    path = tmp_path / "q.json"
+    path.write_text(json.dumps([dict(zip(names, row)) for row in rows]))
+    read, table, peak = _read_measured(path)
+    assert read == names and np.array_equal(table, np.array(rows))
+    assert peak < 3 * path.stat().st_size, (peak, path.stat().st_size)
+
+
+_DOCUMENTS = [
+    '[{"a": 1, "b": 2e-5}, {"b": -1.5E+3, "a": 12345678}]', '[\n {"a": 1}\n ,\n {"a": 2} \n]\n',
+    '{"a": 1}', '[]', '', '  \n ', '[{"a": 1},]', '[{"a": 1}\n\n{"a": 2}]', '[{"a": 1}] x',
+    '[{"a": 1}\n, {"a": 2}\n, {"a": 3}\n, {"a": ]', '[{"a": 1e}]', '[{"a": "x\n', '[\n\n',
+    '[{"a": 1}, 2]', '5', '[{"a": 1}, {"b": 1}]', '[{"a": 1, "b": 2}, {"a": 1}, {"a": 1, "b": 2}]',
+    '[{"a": 1}, {"a": 1, "a": 2}, x]', '[{"a": 1}, x, {"a": 1, "a": 2}]', '\ufeff[{"a": 1}]',
+    '[{"a": NaN, "b": -Infinity}]', '[{"a": 1.5}, {"a": ' + "9" * 40 + '.25}]', '[{"a": tru',
+]
+
+
+@pytest.mark.parametrize("piece", [1, 2, 3, 5, 1 << 18])
+def test_the_json_reader_says_what_the_whole_document_read_at_once_says(monkeypatch, piece):
+    """Read a piece of text at a time (of ``piece`` bytes: a number, a word, a string or a
+    line break cut anywhere), a JSON file of numbers gives the table, or the error and its
+    line, that reading the whole document with json gives, in the same order."""
+    import json
+
+    from urdftool.errors import ConfigError
+
+    def whole(text):  # (main's reader, as it was: json.loads, then the rows' checks)
+        try:
+            data = json.loads(text, object_pairs_hook=config._once_each)
+        except config._Twice as error:
+            return f"q.json: joint '{error.args[0]}' is given twice in one object"
+        except json.JSONDecodeError as error:
+            return f"q.json:{error.lineno}: invalid JSON: {error.msg}"
+        data = [data] if isinstance(data, dict) else data
+        if not isinstance(data, list) or not data:
+            return "q.json: expected a JSON list of objects {joint name: value}"
+        bad = next((n for n, row in enumerate(data, 1) if not isinstance(row, dict)), None)
+        if bad:
+            return f"q.json: row {bad}: expected an object {{joint name: value}}"
+        names = list(dict.fromkeys(name for row in data for name in row))
+        short = next((n for n, row in enumerate(data, 1) if len(row) < len(names)), None)
+        if short:
+            lacking = ", ".join(n for n in names if n not in data[short - 1])
+            return f"q.json: row {short}: row lacks {lacking} (every row must name the same joints)"
+        return names, [[row[name] for name in names] for row in data]
+
+    monkeypatch.setattr(config, "DECODED_AT_ONCE", piece)
+    for text in _DOCUMENTS:
+        try:
+            names, count, rows = config._json_rows(text.encode(), "q.json", "joint")
+            said = names, list(rows())
+            assert count == len(said[1])
+        except ConfigError as error:
+            said = str(error)
+        assert said == whole(text.encode().decode("utf-8-sig")), text

@@ -309,6 +309,32 @@ def test_target_files(tmp_path):
             ik.read_targets(str(bad))
 
 
+
+def test_the_targets_of_a_file_are_made_as_they_are_reached(tmp_path, monkeypatch):
+    """A Target (a position, a 3x3 rotation) was made for every row before the first was
+    solved: 150,000 targets of a 13.7 MB file were 97 MB and 5 s. A row target() refuses is
+    refused all the same when the file is read, before any is used: a coordinate past what
+    the solver squares, a quaternion of length 0, or one whose squares underflow."""
+    made = []
+    real = ik.target
+    monkeypatch.setattr(ik, "target", lambda *a, **k: made.append(a) or real(*a, **k))
+    path = tmp_path / "t.csv"
+    path.write_text("x,y,z,qx,qy,qz,qw\n" + "0.1,0,0.3,0,0,1,1\n" * 40)
+    targets = ik.read_targets(str(path))
+    assert len(targets) == 40 and made == []
+    first = next(iter(targets))
+    assert len(made) == 1 and first.name == "target 1"
+    assert [t.name for t in targets][-1] == "target 40"
+    for row, message in (("1e300,0,0,0,0,1,1", r"row 7: target position x 1e\+300 m is past"),
+                         ("0,0,0,0,0,0,0", "row 7: a quaternion of length 0"),
+                         ("0,0,0,1e-200,1e-200,0,0", "row 7: a quaternion of length 0")):
+        path.write_text("x,y,z,qx,qy,qz,qw\n" + "0.1,0,0.3,0,0,1,1\n" * 6 + row + "\n"
+                        + "0,0,0,0,0,0,0\n")
+        with pytest.raises(ConfigError, match=message):
+            ik.read_targets(str(path))
+    path.write_text("x,y,z,qx,qy,qz,qw\n0,0,0,0,0,0,1e-11\n")  # (near the shortest: asked)
+    assert next(iter(ik.read_targets(str(path)))).rotation is not None
+
 # -- the command ----------------------------------------------------------------------------
 
 

@@ -574,14 +574,10 @@ def test_a_shape_drake_refuses_too_stays_an_error_in_a_file_drake_reads(tmp_path
 def test_a_browsers_copy_takes_what_drake_alone_takes_as_an_error(tmp_path):
     """A web page's copy (three.js urdf-loader) with parent 'world': the loader finds no such
     link either, so U105 stays an error there, while U202 is a warning."""
-    (tmp_path / ".git").mkdir()  # (the application is the repository's own)
-    frontend = tmp_path / "frontend"
-    (frontend / "src").mkdir(parents=True)
-    (frontend / "public").mkdir()
-    (frontend / "package.json").write_text("{}")
-    (frontend / "src" / "model.ts").write_text("loader.load('/pr2.urdf');\n")
-    path = frontend / "public" / "pr2.urdf"
-    path.write_text(_DRAKE_PR2.replace(' xmlns:drake="http://drake.mit.edu"', ""))
+    from crossfile_helpers import served_copy
+
+    path = served_copy(tmp_path, _DRAKE_PR2.replace(' xmlns:drake="http://drake.mit.edu"', ""),
+                       "pr2.urdf")
     findings = {f.code: f for f in load_and_check(str(path), CheckOptions()).findings}
     assert findings["U105"].severity == Severity.ERROR
     assert findings["U202"].severity == Severity.WARNING

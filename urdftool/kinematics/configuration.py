@@ -12,6 +12,7 @@ import csv
 import io
 import json
 import math
+import re
 from dataclasses import dataclass
 from typing import Collection
 
@@ -275,18 +276,22 @@ def from_file(variables: list[Variable], path: str, degrees: bool = False,
 def read_table(path: str, what: str, named: str, check=None) -> tuple[list[str], np.ndarray]:
     """(column names, values ``[rows, columns]``) of a CSV file (header = names; lines that start
     with ``#`` are comments) or a JSON file
-    (a list of objects {name: value}) of numbers, read with :func:`read_text`; ``what`` names
+    (a list of objects {name: value}) of numbers, read with :func:`read_bytes`; ``what`` names
     the file, ``named`` what its columns are ("joint"), ``check(names)`` may refuse the header
     before the values are read. ConfigError, located, for anything wrong: a column named twice
     (a CSV header, a JSON object's key) too, for every file of numbers (either value would be
     a guess; ``json`` and ``csv.DictReader`` take the last). The values are converted
     :data:`ROWS_PER_CHUNK` rows at a time into the table, a row's cells split as it is reached:
     every cell of the file held as a string at once was 433 MB for a 16 MB file (12,000 rows
-    of 300 joints)."""
-    text = read_text(path, what)
-    is_json = path.endswith(".json") or text.lstrip().startswith(("[", "{"))
-    names, count, rows = _json_rows(text, path, named) if is_json else \
-        _csv_rows(text, path, what, named)
+    of 300 joints); a JSON file is decoded an element of its list at a time
+    (:func:`_json_rows`)."""
+    data = read_bytes(path, what)
+    is_json = path.endswith(".json") or _visible_start(data) in ("[", "{")
+    if is_json:
+        names, count, rows = _json_rows(data, path, named)
+    else:
+        text, data = data.decode("utf-8-sig"), None  # (the text alone held: checked UTF-8)
+        names, count, rows = _csv_rows(text, path, what, named)
     twice = named_twice(names)
     if twice is not None:
         raise ConfigError(f"{named} '{shown_word(twice)}' is named twice in the header",
@@ -339,11 +344,12 @@ def named_twice(names):
     return next((name for name in names if name in seen or seen.add(name)), None)
 
 
-def read_text(path: str, what: str) -> str:
-    """The text of a file of numbers the user names (``what``: "q-file"): a regular file up to
-    the size limit that is not a link leading out of its repository, else ConfigError; UTF-8,
-    a byte-order mark left out (it was read as part of the first column's name, "unknown
-    joint '\\ufeffhead_pan'", and JSON refused it)."""
+def read_bytes(path: str, what: str) -> bytes:
+    """The bytes of a file of numbers the user names (``what``: "q-file"): a regular file up to
+    the size limit that is not a link leading out of its repository, else ConfigError; UTF-8
+    (checked a piece at a time, the text not made), a byte-order mark left out when decoded
+    (it was read as part of the first column's name, "unknown joint '\\ufeffhead_pan'", and
+    JSON refused it)."""
     from urdftool.description.files import read_regular
     from urdftool.description.packages import link_out
 
@@ -352,11 +358,42 @@ def read_text(path: str, what: str) -> str:
         raise ConfigError(f"cannot read {what}: it is a symbolic link leading outside the "
                           f"repository ({leads[1]}); not followed", path)
     try:  # a byte-order mark (Excel's "CSV UTF-8") marks the encoding: not the first name's
-        return read_regular(path).decode("utf-8-sig")
+        data = read_regular(path)
     except OSError as error:
         raise ConfigError(f"cannot read {what}: {error.strerror}", path) from None
-    except UnicodeDecodeError as error:
-        raise ConfigError(f"cannot read {what}: {error}", path) from None
+    try:
+        for _ in _decoded(data):
+            pass
+    except UnicodeDecodeError:
+        try:
+            data.decode("utf-8-sig")  # (the error as the whole text's: where it is in the file)
+        except UnicodeDecodeError as error:
+            raise ConfigError(f"cannot read {what}: {error}", path) from None
+    return data
+
+
+# [bytes] of a file of numbers decoded at a time (a JSON element longer is read whole)
+DECODED_AT_ONCE = 1 << 18
+
+
+def _decoded(data: bytes, at_once: int | None = None):
+    """The text of UTF-8 ``data`` (a byte-order mark left out), a piece of about ``at_once``
+    (:data:`DECODED_AT_ONCE`) bytes at a time."""
+    import codecs
+
+    at_once = at_once or DECODED_AT_ONCE
+    decoder = codecs.getincrementaldecoder("utf-8-sig")()
+    for start in range(0, len(data), at_once):
+        yield decoder.decode(data[start:start + at_once], start + at_once >= len(data))
+
+
+def _visible_start(data: bytes) -> str:
+    """The first character of ``data``'s text that is not white space ('' for none)."""
+    for piece in _decoded(data, 1 << 12):
+        piece = piece.lstrip()
+        if piece:
+            return piece[0]
+    return ""
 
 
 def _csv_rows(text: str, path: str, what: str, named: str):
@@ -411,11 +448,26 @@ def _csv_rows(text: str, path: str, what: str, named: str):
     return names, count, rows
 
 
-def _json_rows(text: str, path: str, named: str):
-    """(names, number of rows, rows) of a JSON file of numbers, as :func:`_csv_rows` (its
-    objects held, as ``json`` reads them: a row's values listed as it is reached)."""
+def _json_rows(data: bytes, path: str, named: str):
+    """(names, number of rows, rows) of a JSON file of numbers (``data``, checked UTF-8), as
+    :func:`_csv_rows`: read twice (:func:`_json_values`), its list an element at a time, once
+    to know its names and rows and refuse what is wrong, then for the values, a row's listed as
+    it is reached. The whole document made at once as ``json`` reads it, every row a dict of
+    floats, and its text: reading a 13.5 MB file (3,000 rows of 300 joints) allocated 64.6 MB
+    at the peak, now 25.4 MB (its bytes, the table, a piece of text, a chunk of rows). Refused
+    as the whole document read at once was (``json``'s words and line, in the same order)."""
+    names, first, short, count, listed_rows, not_object = {}, {}, None, 0, False, None
     try:
-        data = json.loads(text, object_pairs_hook=_once_each)
+        for listed_rows, row in _json_values(data):
+            count += 1
+            if not isinstance(row, dict):
+                not_object = not_object or count  # (said once the whole file is read)
+            elif not_object is None:
+                if count == 1:
+                    first = row
+                elif len(row) < len(first) and short is None:
+                    short = (count, [name for name in first if name not in row])
+                names.update(dict.fromkeys(row))  # (in the order first named)
     except _Twice as error:
         raise ConfigError(f"{named} '{error.args[0]}' is given twice in one object", path) from None
     except json.JSONDecodeError as error:
@@ -423,24 +475,136 @@ def _json_rows(text: str, path: str, named: str):
     except (ValueError, RecursionError):  # an integer past Python's 4,300 digits; 10^5 [[
         raise ConfigError("invalid JSON: a number too long or lists nested too deep for "
                           "any configuration", path) from None
-    if isinstance(data, dict):
-        data = [data]
-    if not isinstance(data, list) or not data:
+    if not count or not listed_rows and not_object:  # ([], or one value that is no object)
         raise ConfigError(f"expected a JSON list of objects {{{named} name: value}}", path)
-    named_once: dict[str, None] = {}  # (in the order first named)
-    for number, row in enumerate(data, start=1):
-        if not isinstance(row, dict):
-            raise ConfigError(f"expected an object {{{named} name: value}}",
-                              f"{path}: row {number}")
-        named_once.update(dict.fromkeys(row))
-    names = list(named_once)
-    for number, row in enumerate(data, start=1):
-        missing = [name for name in names if name not in row]
-        if missing:
-            raise ConfigError(f"row lacks {listed(missing, quote=False)} (every row must name "
-                              f"the same {named}s)",
-                              f"{path}: row {number}")
-    return names, len(data), lambda: ([row[name] for name in names] for row in data)
+    if not_object:
+        raise ConfigError(f"expected an object {{{named} name: value}}",
+                          f"{path}: row {not_object}")
+    if len(names) > len(first):  # a name the first row lacks: it is the first short one
+        short = (1, [name for name in names if name not in first])
+    if short is not None:
+        raise ConfigError(f"row lacks {listed(short[1], quote=False)} (every row must name "
+                          f"the same {named}s)", f"{path}: row {short[0]}")
+    names = list(names)
+    return names, count, lambda: ([row[name] for name in names]
+                                  for _, row in _json_values(data))
+
+
+class _Text:
+    """The text of a JSON document read a piece at a time from its bytes (:func:`_decoded`):
+    ``text[at:]`` is what is not yet read, ``lines`` the line breaks before ``text``."""
+
+    def __init__(self, data: bytes) -> None:
+        self.pieces = _decoded(data)
+        self.text, self.at, self.lines, self.ended = "", 0, 0, False
+
+    def more(self) -> bool:
+        """Whether more text was added (at least as much as is held: a long element is read
+        again a bounded number of times); False at the end."""
+        added, size, held = [], 0, len(self.text) - self.at
+        while not self.ended and size < max(held, 1):
+            piece = next(self.pieces, None)
+            if piece is None:
+                self.ended = True
+            else:
+                added.append(piece)
+                size += len(piece)
+        if not added:
+            return False
+        self.lines += self.text.count("\n", 0, self.at)
+        self.text, self.at = self.text[self.at:] + "".join(added), 0
+        return True
+
+    def skip_space(self) -> str:
+        """The next character after JSON's white space ('' at the end), not taken."""
+        while True:
+            self.at = _SPACE(self.text, self.at).end()
+            if self.at < len(self.text) or not self.more():
+                return self.text[self.at:self.at + 1]
+
+    def value(self, decode):
+        """The JSON value that starts here, taken. What fails before the end of the text
+        (a value cut by a piece's end, or not), or ends within a few characters of it (a
+        number whose exponent may follow), is read again with more text: the answer and
+        the error are those of the whole text."""
+        while True:
+            try:
+                value, end = decode(self.text, self.at)
+            except (ValueError, RecursionError) as error:
+                if self.more():
+                    continue
+                if isinstance(error, json.JSONDecodeError):
+                    raise self.error(error.msg, error.pos) from None
+                raise
+            if end + _LOOKAHEAD >= len(self.text) and self.more():
+                continue
+            self.at = end
+            return value
+
+    def error(self, message: str, at: int, line: int | None = None) -> json.JSONDecodeError:
+        """json's error ``message`` at ``at`` in the text, its line counted from the file's
+        start (or ``line``)."""
+        made = json.JSONDecodeError(message, self.text, at)
+        made.lineno = self.line(at) if line is None else line
+        return made
+
+    def line(self, at: int) -> int:
+        """The line of the file that ``at`` in the text is on."""
+        return self.lines + self.text.count("\n", 0, at) + 1
+
+
+_SPACE = re.compile(r"[ \t\n\r]*").match  # (JSON's white space, as json.decoder's)
+_LOOKAHEAD = 3  # [characters] that may extend a number read to the end of the text: 'e-5'
+
+
+def _json_values(data: bytes):
+    """(whether the document is a list, each value) of the JSON document ``data``: each
+    element of its list, read a piece of text at a time, or the one value it is otherwise;
+    json.JSONDecodeError (ValueError, RecursionError) as json.loads raises it of the whole
+    text. The list's brackets, commas and white space are read here as json's scanner reads
+    them (CPython's _json.c, _parse_array_unicode), its elements and any other value by it."""
+    decode = json.JSONDecoder(object_pairs_hook=_once_each).raw_decode
+    text = _Text(data)
+    text.more()
+    if text.text.startswith("\ufeff"):  # (a second mark: json.loads refuses it so)
+        raise text.error("Unexpected UTF-8 BOM (decode using utf-8-sig)", 0)
+    if text.skip_space() != "[":
+        while text.more():
+            pass
+        yield False, text.value(decode)
+    else:
+        text.at += 1
+        if text.skip_space() == "]":
+            text.at += 1
+        else:
+            while True:
+                yield True, text.value(decode)
+                after = text.skip_space()
+                text.at += 1
+                if after == "]":
+                    break
+                if after != ",":
+                    raise text.error("Expecting ',' delimiter", text.at - 1)
+                comma = (text.text, text.at - 1, text.lines)  # (its line counted if said)
+                if text.skip_space() == "]" and _TRAILING_COMMA is not None:
+                    raise text.error(_TRAILING_COMMA, text.at,
+                                     comma[2] + comma[0].count("\n", 0, comma[1]) + 1)
+    if text.skip_space():
+        raise text.error("Extra data", text.at)
+
+
+def _trailing_comma() -> str | None:
+    """What json says of a list's comma before its ']' when it says so at the comma (Python
+    3.13: "Illegal trailing comma before end of array"); None when it expects a value at the
+    ']' (3.11, 3.12), as :meth:`_Text.value` then finds."""
+    try:
+        json.loads("[0,]")
+    except json.JSONDecodeError as error:
+        return error.msg if error.pos == 2 else None
+    return None
+
+
+_TRAILING_COMMA = _trailing_comma()
 
 
 class _Twice(Exception):

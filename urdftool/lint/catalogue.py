@@ -40,7 +40,7 @@ from urdftool.records import Frozen
 from urdftool.simulators import SIMULATORS
 
 __all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule",
-           "Conditional", "Refused", "UrdfdomAlone", "weighed"]
+           "Conditional", "ReadersTake", "Refused", "UrdfdomAlone", "weighed"]
 
 FAMILIES = {
     "U0": "loading and the URDF vocabulary",
@@ -87,22 +87,34 @@ class Taken(Said):
     the real check_urdf by tests/integration/test_parity.py's table of shapes."""
 
 
-class UrdfdomAlone(Said):
-    """A finding's message when urdfdom refuses the shape the finding is about and other readers
-    of URDF take it (``takers``: the kinds of :class:`~urdftool.description.readers.Reader`
-    that do, 'drake', 'browser'): Drake's world frame as a joint's parent, a revolute joint
-    without ``<limit>``. The rule says only that; the engine, in one place
+class ReadersTake(Said):
+    """A finding's message when the shape it is about is a defect for some consumers of the
+    robot's file and other readers of URDF take it: ``takers``, the kinds of
+    :class:`~urdftool.description.readers.Reader` that do ('drake', 'browser') -> who the
+    defect is for on a file that reader reads, as the condition names it ("Gazebo or MuJoCo",
+    "a simulator"). The rule says only that; the engine, in one place
     (:func:`urdftool.lint.engine.as_read`), decides from who reads the robot
-    (:func:`~urdftool.description.readers.other_reader`) whether the finding is the rule's as it
-    is (a file urdfdom reads, or one read by a reader that refuses it too) or a :class:`Refused`
-    warning naming the condition. ``repeated``: as a :class:`~urdftool.errors.Said`'s."""
+    (:func:`~urdftool.description.readers.other_reader`) whether the finding is the rule's as
+    it is (a file ROS or nobody known reads, or one read by a reader that does not take it) or
+    a warning naming the condition, "if WHO loads it (why the reader reads it): ...".
+    ``repeated``: as a :class:`~urdftool.errors.Said`'s."""
 
-    takers: frozenset
+    takers: dict
+
+    def __new__(cls, text: str, takers: dict, repeated: tuple = ()):
+        made = super().__new__(cls, text, tuple(repeated) + getattr(text, "repeated", ()))
+        made.takers = dict(takers)
+        return made
+
+
+class UrdfdomAlone(ReadersTake):
+    """A :class:`ReadersTake` message when it is urdfdom that refuses the shape and other
+    readers of URDF take it (``takers``: their kinds, 'drake', 'browser'): Drake's world frame
+    as a joint's parent, a revolute joint without ``<limit>``. On a file such a reader reads,
+    the engine makes it a :class:`Refused` warning, "if urdfdom loads it ..."."""
 
     def __new__(cls, text: str, takers, repeated: tuple = ()):
-        made = super().__new__(cls, text, tuple(repeated) + getattr(text, "repeated", ()))
-        made.takers = frozenset(takers)
-        return made
+        return super().__new__(cls, text, dict.fromkeys(takers, "urdfdom"), repeated)
 
 
 class Refused(Conditional):

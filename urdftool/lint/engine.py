@@ -10,7 +10,7 @@ from pathlib import Path
 from urdftool import budget as budgets
 from urdftool.diagnostics import Finding, Location, display_path, distinct_sorted
 from urdftool.errors import LoadError, Said, described, missing_extra
-from urdftool.lint.catalogue import Conditional, Refused, Rule, UrdfdomAlone, weighed
+from urdftool.lint.catalogue import Conditional, ReadersTake, Refused, Rule, UrdfdomAlone, weighed
 from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.parts import judged
 from urdftool.lint.rules import CATALOGUE
@@ -173,22 +173,24 @@ def check_robot(robot, selection: Selection = Selection()) -> list[Finding]:
     return distinct_sorted(findings)
 
 
-def as_read(robot, message: UrdfdomAlone) -> str:
-    """A rule's :class:`~urdftool.lint.catalogue.UrdfdomAlone` message as the robot's readers
+def as_read(robot, message: ReadersTake) -> str:
+    """A rule's :class:`~urdftool.lint.catalogue.ReadersTake` message as the robot's readers
     make it, the one place this is decided for every rule: on a robot another reader reads
-    (:func:`~urdftool.description.readers.other_reader`) that takes the shape, a
-    :class:`~urdftool.lint.catalogue.Refused` warning naming the condition, "if urdfdom loads
-    it (WHO reads it and why; nothing says ROS runs it)", still urdfdom's refusal; else the
-    rule's message as it is (what urdfdom refuses is an error for every file urdfdom may
-    read: docs/certainty.md)."""
+    (:func:`~urdftool.description.readers.other_reader`) that takes the shape, a warning
+    naming the condition, "if WHO loads it (WHO reads it and why; nothing says ROS runs it)"
+    (a :class:`~urdftool.lint.catalogue.Refused` one, still urdfdom's refusal, for an
+    :class:`~urdftool.lint.catalogue.UrdfdomAlone`); else the rule's message as it is (what
+    urdfdom refuses, or what a simulator refuses, is an error for every file it may read:
+    docs/certainty.md)."""
     from urdftool.description.readers import other_reader  # (asked of a marked shape only)
 
     reader = other_reader(robot)
     if reader is None or reader.kind not in message.takers:
         return Said(str(message), message.repeated) if message.repeated else str(message)
     why = f" ({reader.why})"
-    return Refused("if urdfdom loads it" + why + ": " + message,
-                   repeated=(("why", why, ""),))
+    said = Refused if isinstance(message, UrdfdomAlone) else Conditional
+    return said(f"if {message.takers[reader.kind]} loads it" + why + ": " + message,
+                repeated=(("why", why, ""),))
 
 
 def _run_rules(robot, allows, targets: bool = True) -> list[Finding]:
@@ -199,7 +201,7 @@ def _run_rules(robot, allows, targets: bool = True) -> list[Finding]:
         yielded = []  # (where, message, [fix, severity]): stamped together once the rule ends
         try:
             for where, message, *rest in rule.check(robot):
-                if isinstance(message, UrdfdomAlone):
+                if isinstance(message, ReadersTake):
                     message = as_read(robot, message)
                 yielded.append((where, message, rest))
             if yielded:  # (most rules find nothing)

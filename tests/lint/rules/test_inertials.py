@@ -961,3 +961,68 @@ def test_principal_moments_order_names_the_moments_swapped(tmp_path, size, tenso
     _, findings = check_folder(tmp_path, {"robot.urdf": _bar(tensor, size)}, select=("U314",))
     [finding] = findings
     assert finding.message.endswith("written for other axes " + swapped), finding.message
+
+
+# Drake's planar base (RobotLocomotion/models' pr2_simplified): x and y move massless links,
+# theta the base that has mass
+_PLANAR_BASE = """<robot name="pr2" xmlns:drake="http://drake.mit.edu">
+<link name="world"/><link name="x_link"/><link name="y_link"/>
+<link name="base"><inertial><mass value="10"/>
+  <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link>{tip}
+<joint name="x" type="prismatic"><parent link="world"/><child link="x_link"/><axis xyz="1 0 0"/>
+  <limit lower="-9" upper="9" effort="1" velocity="1"/></joint>
+<joint name="y" type="prismatic"><parent link="x_link"/><child link="y_link"/><axis xyz="0 1 0"/>
+  <limit lower="-9" upper="9" effort="1" velocity="1"/></joint>
+<joint name="theta" type="continuous"><parent link="y_link"/><child link="base"/>
+  <axis xyz="0 0 1"/></joint>
+</robot>
+"""
+_TIP = ('<link name="tip"/><joint name="t" type="revolute"><parent link="base"/>'
+        '<child link="tip"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>')
+
+
+def _u303(path) -> list[tuple[str, str]]:
+    result = load_and_check(str(path), CheckOptions(selection=Selection(("U303",))))
+    return [(f.severity.value, f.message) for f in result.findings]
+
+
+def test_a_massless_moving_link_is_a_warning_where_only_drake_reads_it_and_takes_it(tmp_path):
+    """Drake's solver takes a massless link with a body of mass below it (pr2_simplified's x
+    and y links): in a file only Drake reads, the finding holds if Gazebo (which drops the
+    link) or MuJoCo (which refuses it) loads the file. A terminal massless link Drake
+    refuses too: an error there. In a ROS package, errors."""
+    path = tmp_path / "drake" / "pr2.urdf"
+    path.parent.mkdir()
+    path.write_text(_PLANAR_BASE.format(tip=_TIP))
+    found = {message.split("link '")[1].split("'")[0]: (severity, message)
+             for severity, message in _u303(path)}
+    assert {link: severity for link, (severity, _) in found.items()} == {
+        "x_link": "warning", "y_link": "warning", "tip": "error"}, found
+    assert found["tip"][1].startswith("link 'tip' is moved by joint 't' but has no <inertial>")
+    assert all(found[link][1].startswith(
+        'if Gazebo or MuJoCo loads it (Drake reads it: its <robot> declares '
+        'xmlns:drake="http://drake.mit.edu"; nothing says ROS runs') for link in ("x_link",
+                                                                                  "y_link"))
+    assert found["x_link"][1].endswith("link 'x_link' is moved by joint 'x' but has no "
+                                       "<inertial> (nor does any link fixed to it); give it "
+                                       "its real mass and inertia")
+    (tmp_path / "ros").mkdir()
+    (tmp_path / "ros" / "package.xml").write_text(
+        '<package format="2"><name>bot</name><version>0.0.0</version><description>d'
+        '</description><maintainer email="a@b.c">a</maintainer><license>MIT</license>'
+        '<buildtool_depend>catkin</buildtool_depend></package>')
+    (tmp_path / "ros" / "pr2.urdf").write_text(_PLANAR_BASE.format(tip=_TIP))
+    assert [severity for severity, _ in _u303(tmp_path / "ros" / "pr2.urdf")] == ["error"] * 3
+
+
+def test_a_massless_moving_link_is_a_warning_in_a_web_pages_copy(tmp_path):
+    """A web page's viewer (three.js urdf-loader) reads no mass: in the copy a web application
+    serves and fetches, the finding holds if a simulator loads the file, terminal or not."""
+    from crossfile_helpers import served_copy
+
+    found = _u303(served_copy(tmp_path, _PLANAR_BASE.format(tip=_TIP).replace(
+        ' xmlns:drake="http://drake.mit.edu"', ""), "pr2.urdf"))
+    assert [severity for severity, _ in found] == ["warning"] * 3, found
+    assert all(message.startswith("if a simulator loads it (a web page reads it: ")
+               for _, message in found), found

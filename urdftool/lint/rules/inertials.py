@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Conditional, Severity, rule
+from urdftool.lint.catalogue import Conditional, ReadersTake, Severity, rule
 from urdftool.numbers import MILLIMETRE, number, numbers, power
 from urdftool.description.urdf import VARIABLE
 from urdftool.description.xml import attribute, first_child
@@ -219,8 +219,38 @@ def negative_mass(robot):
 def moving_link_without_mass(robot):
     """A link moved by a joint has no mass, counting every link fixed to it.
 
-    Gazebo silently drops massless links (and what hangs below them); Pinocchio and MuJoCo
-    refuse or produce a singular mass matrix. A massless frame fixed to a body with mass is fine.
+    What each consumer does with a moving body of no mass (the link and the links fixed to
+    it, which every simulator lumps or fuses into one body):
+
+    - **Gazebo** (gazebosim/sdformat ``src/parser_urdf.cc``, ``CreateSDF``, after lumping
+      the fixed joints): a link with no ``<inertial>`` or a mass of 0 or less "is not modeled
+      in sdf": it, its joint and every link and joint below it are dropped, with a warning in
+      the log (Gazebo Classic's older sdformat: a mass within 1e-6 kg of 0).
+    - **MuJoCo** (google-deepmind/mujoco ``src/xml/xml_urdf.cc``, fixed links fused,
+      ``fusestatic``): a link without ``<inertial>`` takes its mass from its collision
+      geometry; a moving body whose mass or a principal moment is below ``mjMINVAL`` (1e-15),
+      its fused links counted, is refused: "mass and inertia of moving bodies must be larger
+      than mjMINVAL" (``src/user/user_model.cc``, ``CheckBodyMassInertia``).
+    - **PyBullet** (bulletphysics/bullet3
+      ``examples/Importers/ImportURDFDemo/UrdfParser.cpp``): a link without ``<inertial>``
+      is given 1 kg and unit moments ("No inertial data for link, using mass=1"): it loads,
+      with dynamics of its own making.
+    - **Drake** (RobotLocomotion/drake ``multibody/parsing/detail_urdf_parser.cc``: no
+      ``<inertial>`` is zero mass): its articulated-body solver refuses a joint whose child,
+      with everything outboard of it, has no mass or moment ("An internal mass matrix
+      associated with the joint ... is not positive-definite", ``multibody/tree/
+      body_node.cc``); a massless link with a body of mass below it (Drake's planar base
+      emulated by x, y and yaw joints) is fine.
+    - **Pinocchio** reads it, and its mass matrix is singular (forward dynamics divides by
+      zero).
+    - A web page's viewer (three.js urdf-loader) reads no mass at all.
+
+    So the finding is an error where a simulator may load the file (ROS's, or one nobody is
+    known to read), and a warning naming the condition where the readers known take it
+    (:mod:`urdftool.description.readers`): "if Gazebo or MuJoCo loads it" in a file only
+    Drake reads, when a link below carries mass (a terminal massless body Drake refuses too:
+    an error there); "if a simulator loads it" in a web application's copy.
+    A massless frame fixed to a body with mass is fine.
 
     Only checked when the robot declares at least one ``<inertial>``: a description without any
     is a kinematic model (for visualisation or planning) and is not meant to be simulated.
@@ -251,9 +281,30 @@ def moving_link_without_mass(robot):
                                   and _name(l) not in masses
                                   for l in (robot.links.get(b) for b in body) if l is not None):
             what = "no <inertial>" if first_child(link, "inertial") is None else "zero mass"
-            yield link, (f"link '{name}' is moved by joint "
-                         f"'{moving[name].get('name')}' but has {what} (nor "
-                         "does any link fixed to it); give it its real mass and inertia")
+            takers = {"browser": "a simulator"}  # (a web page's viewer reads no mass)
+            if name in _carried(robot):  # Drake's solver takes it: mass outboard
+                takers["drake"] = "Gazebo or MuJoCo"
+            yield link, ReadersTake(f"link '{name}' is moved by joint "
+                                    f"'{moving[name].get('name')}' but has {what} (nor "
+                                    "does any link fixed to it); give it its real mass and "
+                                    "inertia", takers)
+
+
+def _carried(robot) -> set[str]:
+    """The names of the links below which (through any joint, moving or fixed) a link has
+    mass: walked up from each such link, once per robot."""
+    def build():
+        parents, ends, found = parent_joints(robot), robot.ends(), set()
+        for link, properties in _valid(robot):
+            current = _name(link)
+            while properties.mass > 0 and current in parents:
+                above = ends[parents[current]]["parent"][1]
+                if above is None or above in found:
+                    break
+                found.add(above)
+                current = above
+        return found
+    return robot.memo(_carried, build)
 
 
 def _rigid_body_has_no_inertia(robot, name: str) -> bool:
