@@ -18,6 +18,7 @@ from pytest_lsp import ClientServerConfig, LanguageClient, client_capabilities  
 
 from conftest import CASES  # noqa: E402
 from rule_links import assert_rule_page  # noqa: E402
+from slow_robots import slow_xacro  # noqa: E402
 
 MACRO = """\
 <?xml version="1.0"?>
@@ -827,23 +828,7 @@ async def test_a_file_created_outside_the_editor_rechecks_the_robots_that_search
     await wait_until(lambda: codes(client, macro.as_uri()) == [(LIMIT_LINE, "U204")])
 # ---- the budget: a slow document holds no other, a flood of changes queues nothing -------------
 
-# A robot that takes hours to expand under every cap of the sandbox: each level of the macro
-# calls the next twice (2^24 calls), each call's condition a legal million-item walk (~20 ms).
-# Quick calls alone hit the cap of 20,000 macro calls (U016) within the budget on a fast
-# machine: CI's did in 4.3 s.
-SLOW = """\
-<?xml version="1.0"?>
-<robot name="slow" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:macro name="twice" params="n">
-    <xacro:if value="${n > 0 and max(range(1000000)) > 0}">
-      <xacro:twice n="${n - 1}"/>
-      <xacro:twice n="${n - 1}"/>
-    </xacro:if>
-  </xacro:macro>
-  <link name="base"/>
-  <xacro:twice n="24"/>
-</robot>
-"""
+SLOW = slow_xacro()  # hours to expand under every cap of the sandbox (tests/slow_robots.py)
 BUDGET = 5  # [s] the server's --timeout in these tests (the slow document spins it out)
 
 

@@ -10,6 +10,7 @@ import sys
 import pytest
 
 from conftest import ROOT
+from slow_robots import slow_xacro
 from urdftool.lint import engine
 from urdftool.lint.engine import CheckOptions, load_and_check
 
@@ -533,11 +534,6 @@ def test_a_plain_check_prints_and_exits_as_typers_without_importing_it(words):
 # One file checked under a guardian (``__main__._guarded``, ``urdftool.guardian``): forked
 # before the rules are imported, the budgets kept against hostile files
 
-# a robot that expands for hours (each level calls the next twice, 2^24 calls)
-SLOW = ('<robot name="slow" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
-        '<xacro:macro name="twice" params="n"><xacro:if value="${n > 0}">\n'
-        '<xacro:twice n="${n - 1}"/><xacro:twice n="${n - 1}"/></xacro:if></xacro:macro>\n'
-        '<link name="base"/><xacro:twice n="24"/></robot>\n')
 
 
 def _door(tmp_path, patch: str, *words: str) -> subprocess.CompletedProcess:
@@ -585,7 +581,7 @@ def test_a_hostile_file_checked_under_the_guardian_is_stopped_at_its_time(tmp_pa
     import json
     import time
 
-    (tmp_path / "slow.urdf.xacro").write_text(SLOW)
+    (tmp_path / "slow.urdf.xacro").write_text(slow_xacro())
     start = time.monotonic()
     done = _door(tmp_path, "", "check", "--no-cache", "--timeout", "1", "--format", "json",
                  "slow.urdf.xacro")

@@ -36,6 +36,8 @@ from pathlib import Path
 
 from hypothesis import strategies as st
 
+from tests.slow_robots import slow_xacro
+
 from . import forge
 from .harness import REGRESSIONS
 
@@ -50,21 +52,13 @@ ROBOT = """<?xml version="1.0"?>
     <limit lower="1" upper="-1" effort="1" velocity="1"/></joint>
 </robot>
 """
-SLOW = """<?xml version="1.0"?>
-<robot name="slow" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:macro name="twice" params="n"><xacro:if value="${{n > 0 and max(range(1000000)) > 0}}">
-    <xacro:twice n="${{n - 1}}"/><xacro:twice n="${{n - 1}}"/></xacro:if></xacro:macro>
-  <link name="base{n}"/>
-  <xacro:twice n="24"/>
-</robot>
-"""
 
 
 def text_of(kind: str, n: int) -> str:
     if kind == "fast":
         return ROBOT.format(n=n)
     if kind == "slow":
-        return SLOW.format(n=n)
+        return slow_xacro(link=f"base{n}")
     if kind == "hostile":
         return forge.robot_urdf(forge.names()) + f"<!-- {n} -->"
     if kind == "malformed":

@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 from conftest import ROBOTS, corpus_or_skip
+from slow_robots import slow_xacro
 from tests.fuzz.harness import REGRESSIONS, load_regression, replay
 
 REGRESSION_FILES = sorted(REGRESSIONS.glob("*.bin"))
@@ -114,7 +115,7 @@ def test_child_refuses_writes_outside_and_kills_on_time_limit(scratch_case, prel
     victim.write_text("VICTIM\n")
     (repo / "report.json").symlink_to(victim)
 
-    def naive_write(path, data, rewrites=False):  # the writer before it wrote beside and replaced
+    def naive_write(path, data, rewrites=False, **_):  # the writer before it wrote beside and replaced
         with open(path, "w" if isinstance(data, str) else "wb") as handle:
             handle.write(data)
 
@@ -123,13 +124,9 @@ def test_child_refuses_writes_outside_and_kills_on_time_limit(scratch_case, prel
                   scratch=scratch)
     assert victim.read_text() == "VICTIM\n"
     assert any(e.startswith("outside: open write") for e in written.events)
-    # a robot that expands for hours (each level calls the next twice, 2^24 calls): killed at
-    # the time limit however fast the machine (a tiny robot under 10 ms was not always)
-    (repo / "slow.urdf.xacro").write_text(
-        '<robot name="slow" xmlns:xacro="http://www.ros.org/wiki/xacro">'
-        '<xacro:macro name="twice" params="n"><xacro:if value="${n > 0}">'
-        '<xacro:twice n="${n - 1}"/><xacro:twice n="${n - 1}"/></xacro:if></xacro:macro>'
-        '<link name="base"/><xacro:twice n="24"/></robot>\n')
+    # a robot that expands for hours under every cap of the sandbox (tests/slow_robots.py):
+    # killed at the time limit however fast the machine (a tiny robot under 10 ms was not always)
+    (repo / "slow.urdf.xacro").write_text(slow_xacro())
     slow = run(["check", "--timeout", "0", "slow.urdf.xacro"], cwd=repo, allow=allow,
                scratch=scratch, time_limit=1.0)
     assert slow.hung
