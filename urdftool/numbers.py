@@ -72,15 +72,19 @@ def too_long(characters: int) -> TooLong:
                    f"configuration holds (Python converts {MAX_INT_DIGITS:,} digits)")
 
 
-def long_integer(text: str):
-    """The first run of decimal digits in ``text`` longer than Python converts (a match: its
-    ``start()`` locates it), or None: where a reader that converts its own numbers (tomllib,
-    json) raised its ValueError."""
+def long_integers(text: str):
+    """The runs of decimal digits in ``text`` longer than Python converts (matches: their
+    ``start()`` locates them): where a reader that converts its own numbers (tomllib) raised
+    its ValueError."""
     for found in _DIGITS.finditer(text):
         if len(found.group()) > MAX_INT_DIGITS and \
                 len(found.group().replace("_", "")) > MAX_INT_DIGITS:
-            return found
-    return None
+            yield found
+
+
+def long_integer(text: str):
+    """The first of :func:`long_integers`, or None."""
+    return next(long_integers(text), None)
 
 
 def integer(text: str, base: int = 10) -> int:

@@ -160,8 +160,8 @@ def _toml(value):
         yield "true" if value else "false"
     elif isinstance(value, int) and value.bit_length() > 14_000:  # past what str() writes
         yield f"a whole number of {int(value.bit_length() * math.log10(2))} digits or so"
-    elif isinstance(value, (int, float)) and math.isfinite(value):
-        yield repr(value)
+    elif isinstance(value, int) or isinstance(value, float) and math.isfinite(value):
+        yield repr(value)  # (an int past a double: math.isfinite raised OverflowError)
     elif isinstance(value, float):
         yield "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
     elif isinstance(value, str):

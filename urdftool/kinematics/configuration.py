@@ -414,15 +414,18 @@ def _csv_rows(text: str, path: str, what: str, named: str):
 def _json_rows(text: str, path: str, named: str):
     """(names, number of rows, rows) of a JSON file of numbers, as :func:`_csv_rows` (its
     objects held, as ``json`` reads them: a row's values listed as it is reached)."""
-    try:
-        data = json.loads(text, object_pairs_hook=_once_each)
+    try:  # (every number kept as written, converted to a float with the rest: an integer
+        # past Python's 4,300 digits was json's ValueError, one past a double float()'s
+        # OverflowError, each a traceback; as written, each is "not finite" at its row)
+        data = json.loads(text, object_pairs_hook=_once_each, parse_int=_Number,
+                          parse_float=_Number)
     except _Twice as error:
         raise ConfigError(f"{named} '{error.args[0]}' is given twice in one object", path) from None
     except json.JSONDecodeError as error:
         raise ConfigError(f"invalid JSON: {error.msg}", f"{path}:{error.lineno}") from None
-    except (ValueError, RecursionError):  # an integer past Python's 4,300 digits; 10^5 [[
-        raise ConfigError("invalid JSON: a number too long or lists nested too deep for "
-                          "any configuration", path) from None
+    except RecursionError:  # 10^5 [[
+        raise ConfigError("invalid JSON: lists nested too deep for any configuration",
+                          path) from None
     if isinstance(data, dict):
         data = [data]
     if not isinstance(data, list) or not data:
@@ -441,6 +444,12 @@ def _json_rows(text: str, path: str, named: str):
                               f"the same {named}s)",
                               f"{path}: row {number}")
     return names, len(data), lambda: ([row[name] for name in names] for row in data)
+
+
+class _Number(str):
+    """A JSON number as written (``float`` reads it as the CSV reader reads a cell)."""
+
+    __slots__ = ()
 
 
 class _Twice(Exception):
@@ -555,6 +564,10 @@ def within(generator, lower, upper, size: tuple[int, int]) -> np.ndarray:
     a span past the largest float."""
     from urdftool.numbers import MAX_COORDINATE
 
+    if math.prod(size) > np.iinfo(np.intp).max // 8:  # numpy's ValueError ("array is too
+        # big"), a traceback of --random, --samples, --seeds of 10^18, where 10^10 ran out of
+        # the memory budget (U018): no memory holds it either
+        raise MemoryError(f"{size[0]:,} draws of {size[1]} values: past any memory")
     low = np.clip(np.minimum(lower, upper), -MAX_COORDINATE, MAX_COORDINATE)
     high = np.clip(np.maximum(lower, upper), -MAX_COORDINATE, MAX_COORDINATE)
     return generator.uniform(low, high, size=size)

@@ -52,6 +52,7 @@ from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimit
 from urdftool.description.record import remembered
 from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
+from urdftool.numbers import too_long
 from urdftool.records import Frozen, NEW, Record, replace
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
@@ -253,10 +254,26 @@ def _read(path: Path, holding: str | None = None) -> dict:
     except tomllib.TOMLDecodeError as error:
         raise SettingsError(f"cannot read settings in {path}: {error}") from None
     except ValueError:  # tomllib's int() of a number past Python's 4,300 digits
-        raise SettingsError(f"cannot read settings in {path}: a number too long for any "
-                            "setting") from None
+        found = _long_number(text)
+        where = f"{path}:{line_at(text, found.start())}" if found else f"{path}"
+        raise SettingsError(f"cannot read settings in {where}: " + (
+            str(too_long(len(found.group()))) if found else "a number too long for any "
+            "setting")) from None
     except RecursionError:  # what too_deep() missed
         raise SettingsError(f"{path}: settings nest too deeply; not read") from None
+
+
+def _long_number(text: str):
+    """Where tomllib's ValueError is: the first run of digits longer than Python converts
+    that is not inside a string on its line (an even number of quotes of each kind before it
+    there), or None."""
+    from urdftool.numbers import long_integers
+
+    for found in long_integers(text):
+        line = text[text.rfind("\n", 0, found.start()) + 1:found.start()]
+        if line.count('"') % 2 == 0 and line.count("'") % 2 == 0:
+            return found
+    return None
 
 
 def may_hold(text: str, table: str, key: str) -> bool:
