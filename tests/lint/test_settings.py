@@ -49,6 +49,25 @@ def settings(project, text: str, name: str = "pyproject.toml") -> None:
     (project / name).write_text(header + text)
 
 
+def test_a_settings_file_another_user_owns_outside_a_repository_is_not_read_and_said(
+        run_cli, project, monkeypatch):
+    """Outside a repository settings are looked for up to /: a pyproject.toml another local
+    user left in /tmp selected and ignored the rules of a check of an archive unpacked below
+    it, in silence. Not read, and said (git reads no repository another user owns); inside a
+    repository, or named with --config, it is the user's to read."""
+    from conftest import another_users
+
+    settings(project, 'ignore = ["U204"]\n')
+    another_users(project / "pyproject.toml", monkeypatch)
+    result = run_cli("check", project / "robots", "--format", "json")
+    assert sorted(d["code"] for d in json.loads(result.stdout)["diagnostics"]) == ["U204", "U206"]
+    assert f"urdftool: settings file '{project / 'pyproject.toml'}' not read: it belongs to " \
+           "another user" in result.stderr and "give it with --config" in result.stderr
+    assert codes(run_cli, project / "robots", "--config", project / "pyproject.toml") == (0, ["U206"])
+    (project / ".git").mkdir()
+    assert codes(run_cli, project / "robots") == (0, ["U206"])
+
+
 def test_no_settings(run_cli, project):
     assert codes(run_cli, project / "robots") == (1, ["U204", "U206"])
 
