@@ -87,6 +87,13 @@ def long_integer(text: str):
     return next(long_integers(text), None)
 
 
+def is_decimal(text: str) -> bool:
+    """Whether ``text`` is ASCII digits 0-9 alone (one at least): a number as C's strtol and a
+    file format read it. ``str.isdigit()`` also takes ``'²'`` (which ``int()`` refuses with a
+    ValueError) and ``'٣'`` (which ``int()`` reads and C does not)."""
+    return text.isascii() and text.isdigit()
+
+
 def integer(text: str, base: int = 10) -> int:
     """``int(text, base)``: :class:`TooLong` for a decimal longer than Python converts (in a
     base that is a power of two Python converts any length in linear time), ValueError for
