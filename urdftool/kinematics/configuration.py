@@ -566,7 +566,7 @@ def within(generator, lower, upper, size: tuple[int, int]) -> np.ndarray:
 
     if math.prod(size) > np.iinfo(np.intp).max // 8:  # numpy's ValueError ("array is too
         # big"), a traceback of --random, --samples, --seeds of 10^18, where 10^10 ran out of
-        # the memory budget (U018): no memory holds it either
+        # the memory budget: no memory holds it either
         raise MemoryError(f"{size[0]:,} draws of {size[1]} values: past any memory")
     low = np.clip(np.minimum(lower, upper), -MAX_COORDINATE, MAX_COORDINATE)
     high = np.clip(np.maximum(lower, upper), -MAX_COORDINATE, MAX_COORDINATE)
