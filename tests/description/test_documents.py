@@ -218,6 +218,19 @@ def test_what_pyyaml_cannot_construct_in_a_ros2_parameter_file_is_read_as_ros2_r
         assert read_yaml(path, parameters=False).line == 4 and read_yaml(path, parameters=False).problem
 
 
+def test_an_alias_in_a_ros2_parameter_file_is_a_caution_naming_who_refuses_it(tmp_path):
+    """rcl_yaml_param_parser refuses every alias ("Will not support aliasing"): a node given
+    such a file as its parameters fails to start, which nothing said; a launch file loading it
+    with PyYAML reads it, so a caution, at the alias, not the file's error."""
+    path = tmp_path / "c.yaml"
+    path.write_text("defaults: &d {p: 1}\nnode:\n  ros__parameters:\n    <<: *d\n    q: 2\n")
+    parsed = read_yaml(path)
+    assert parsed.problem is None and parsed.data["node"]["ros__parameters"] == {"p": 1, "q": 2}
+    assert parsed.line == 4 and "refuses every alias" in parsed.caution
+    path.write_text("defaults: &d {p: 1}\nnode:\n  params: *d\n")  # ROS 1: rosparam reads it
+    assert read_yaml(path).caution is None
+
+
 def test_merge_keys_and_unknown_tags_are_read_as_pyyaml_reads_them(tmp_path):
     """The companions' loader never flattened merge keys (``<<: *defaults``, which rosparam
     reads): every file using one was "could not determine a constructor for the tag

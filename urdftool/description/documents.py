@@ -296,7 +296,7 @@ def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None 
             loader.merge_repeated = result.ros2
             loader.lenient, loader.any_integer = result.ros2 and parameters, not parameters
             result.data = loader.get_single_data()
-            _unconstructed(result, loader.unconstructed)
+            _as_ros2_reads(result, loader)
             return result
         except Exception:  # (libyaml's error, or a limit's: PyYAML's reading says it)
             result.data = None
@@ -310,7 +310,7 @@ def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None 
     loader.lenient, loader.any_integer = result.ros2 and parameters, not parameters
     try:
         result.data = loader.get_single_data()
-        _unconstructed(result, loader.unconstructed)
+        _as_ros2_reads(result, loader)
     except yaml.MarkedYAMLError as error:
         result.line = _error_line(error, text)
         result.problem = f"{error.problem or error}" + (f" ({error.context})" if error.context else "")
@@ -321,18 +321,31 @@ def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None 
     return result
 
 
-def _unconstructed(result: YamlFile, found) -> None:
-    """The caution of a ROS 2 parameter file holding values PyYAML cannot construct (read as
-    ROS 2's parser reads them, :class:`~urdftool.description.yaml_limits.DepthLimit`'s
-    ``lenient``), at the first: whether the file loads depends on what reads it."""
-    if not found:
-        return
-    result.line, why = found[0]
-    more = f" (and {len(found) - 1} more such values)" if len(found) > 1 else ""
-    result.caution = (
-        f"{why}{more}: ROS 2's parameter parser reads it as written (no dates, no tag but "
-        "!!str, a number past its types as text), so the file loads as a node's parameter "
-        "file, but a launch file or tool loading it with PyYAML (yaml.safe_load) fails")
+def _as_ros2_reads(result: YamlFile, loader) -> None:
+    """The caution of a ROS 2 parameter file that ROS 2's parser and PyYAML read apart
+    (:class:`~urdftool.description.yaml_limits.DepthLimit`'s ``lenient``), at the first place:
+    a value PyYAML cannot construct (read as ROS 2 reads it: the node loads the file, a launch
+    file loading it with PyYAML fails), an alias (rcl_yaml_param_parser refuses every one: the
+    node fails, a launch file loading it with PyYAML reads it). Whether the file loads depends
+    on what reads it: a warning, never the file's error."""
+    said = []
+    found = loader.unconstructed
+    if found:
+        line, why = found[0]
+        more = f" (and {len(found) - 1} more such values)" if len(found) > 1 else ""
+        said.append((line, (
+            f"{why}{more}: ROS 2's parameter parser reads it as written (no dates, no tag but "
+            "!!str, a number past its types as text), so the file loads as a node's parameter "
+            "file, but a launch file or tool loading it with PyYAML (yaml.safe_load) fails")))
+    if loader.aliased is not None:
+        said.append((loader.aliased, (
+            f"an alias (*name) on line {loader.aliased}: ROS 2's parameter parser refuses "
+            "every alias (\"Will not support aliasing\"), so a node given this file as its "
+            "parameter file fails to start; only a launch file loading it with PyYAML reads it")))
+    if said:
+        said.sort()
+        result.line = said[0][0]
+        result.caution = "; and ".join(text for _, text in said)
 
 
 def _error_line(error, text: str) -> int | None:

@@ -64,6 +64,7 @@ class DepthLimit:
     # in ``unconstructed``
     lenient = False
     unconstructed: list | tuple = ()
+    aliased: int | None = None  # lenient: the line of the first alias (ROS 2 refuses every one)
     any_integer = False  # a launch file's: an integer past a double is text to its readers
 
     def file_line(self, mark) -> int:
@@ -120,6 +121,8 @@ class DepthLimit:
         return node
 
     def compose_node(self, parent, index):
+        if self.lenient and self.aliased is None and self.check_event(yaml.events.AliasEvent):
+            self.aliased = self.file_line(self.peek_event().start_mark)
         if self._depth >= MAX_DEPTH:
             mark = self.peek_event().start_mark
             raise LimitError(

@@ -117,7 +117,9 @@ def malformed_controllers_yaml(robot):
     A value PyYAML cannot construct (``2001-02-30``, a date to YAML 1.1 and no date; ``!!float
     junk``; ``<<: 5``) fails every loader of a ROS 1 file (rosparam reads with PyYAML); in a ROS
     2 parameter file it is a warning: ROS 2's parser reads it as written (no dates, no tag but
-    ``!!str``), while a launch file or tool loading the file with PyYAML fails.
+    ``!!str``), while a launch file or tool loading the file with PyYAML fails. An alias
+    (``*defaults``, ``<<: *defaults``) in a ROS 2 parameter file is a warning too: ROS 2's parser
+    refuses every alias, PyYAML reads it.
 
     Bad: ``joints: [head_pan, head_tilt`` (unclosed list)
     Good: ``joints: [head_pan, head_tilt]``
