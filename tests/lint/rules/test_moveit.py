@@ -106,6 +106,17 @@ def test_a_kinematics_yaml_that_does_not_read_is_said_not_skipped(tmp_path):
     assert found == [("kinematics.yaml", 3, "U812")] and "day is out of range" in findings[0].message
 
 
+@pytest.mark.parametrize("key, flag", [("max_velocity", "has_velocity_limits"),
+                                       ("max_acceleration", "has_acceleration_limits")])
+def test_a_moveit_limit_of_nan_is_no_number(tmp_path, key, flag):
+    """``.nan`` passed every comparison of a limit (above 0, at most the URDF's): no finding,
+    and MoveIt plans with a NaN limit."""
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
+             "joint_limits.yaml": f"joint_limits:\n  head_joint:\n    {flag}: true\n    {key}: .nan\n"}
+    found, findings = check_folder(tmp_path, files, select=("U81",))
+    assert found == [("joint_limits.yaml", 4, "U812")] and "'nan' must be a number" in findings[0].message
+
+
 def test_moveit_files_are_not_read_through_a_link_out_of_the_srdf_folder(tmp_path):
     outside = tmp_path / "outside"
     outside.mkdir()
