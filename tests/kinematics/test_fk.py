@@ -537,6 +537,7 @@ def test_a_negative_seed_is_a_usage_error(run_cli, tmp_path):
     ('[{"j1": 0, "j2": 1}, {"j1": ' + "9" * 5000 + ', "j2": 1}]', "q.json: row 2: value '9999"),
     ('[{"j1": 0, "j2": 1}, {"j1": 1, "j2": -' + "9" * 400 + "}]", "q.json: row 2: value '-999"),
     ('[{"j1": 1e400, "j2": 1}]', "q.json: row 1: value '1e400' for joint 'j1' is not finite"),
+    ('[{"j1": [1, 2.50], "j2": 1}]', "q.json: row 1: value '[1, 2.50]' for joint 'j1' is not a number"),
     ("[" * 100_000, "invalid JSON"),
 ])
 def test_a_json_table_too_long_or_deep_for_python_is_a_config_error(tmp_path, text, said):
@@ -551,7 +552,7 @@ def test_a_json_table_too_long_or_deep_for_python_is_a_config_error(tmp_path, te
     with pytest.raises(ConfigError) as raised:
         config.read_table(str(path), "configurations", "joint")
     assert said in f"{raised.value.where}: {raised.value}"
-    assert "not finite" in str(raised.value) or said == "invalid JSON"
+    assert "not finite" in str(raised.value) or said == "invalid JSON" or "[1, 2.50]" in said
 
 
 @pytest.mark.parametrize("origin", ['xyz="0 0 0" rpy="inf 0 0"', 'xyz="nan 0 0"',

@@ -452,6 +452,18 @@ class _Number(str):
     __slots__ = ()
 
 
+def _json_text(value) -> str:
+    """A JSON value as written, its numbers as they were (:class:`_Number`: ``json.dumps``
+    wrote ``[1]`` as ``["1"]``)."""
+    if isinstance(value, _Number):
+        return str(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(map(_json_text, value)) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{json.dumps(k)}: {_json_text(v)}" for k, v in value.items()) + "}"
+    return json.dumps(value)
+
+
 class _Twice(Exception):
     """A JSON object giving a key twice (its key)."""
 
@@ -472,7 +484,7 @@ def _located_floats(rows, names, path, named: str, before: int = 0) -> np.ndarra
     for number, row in enumerate(rows, start=1):
         for column, cell in enumerate(row):
             where = f"{path}: row {before + number}"
-            written = cell if isinstance(cell, str) else json.dumps(cell)  # (JSON's words)
+            written = cell if isinstance(cell, str) else _json_text(cell)  # (JSON's words)
             message = (f"value '{shown_word(written)}' for {named} "
                        f"'{shown_word(names[column])}' is not a number")
             if isinstance(cell, bool) or not isinstance(cell, (int, float, str)):
