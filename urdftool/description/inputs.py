@@ -120,9 +120,10 @@ def held(option: str, value, kind: str, *, none: bool = False):
     elif kind == "path":
         if isinstance(value, (str, os.PathLike)):
             return value
-    elif kind == "seconds":
+    elif kind == "seconds":  # (an int past a double is below inf, and float() of it raised
+        # OverflowError where the budget was made)
         if not isinstance(value, bool) and isinstance(value, (int, float)) and \
-                0 <= value < math.inf:
+                0 <= value < math.inf and (isinstance(value, float) or value < 2 ** 1023):
             return value
     elif kind == "count":
         if not isinstance(value, bool) and isinstance(value, int) and value >= 0:
