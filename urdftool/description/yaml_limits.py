@@ -141,6 +141,9 @@ _KINDS = {"int": "an integer", "float": "a float", "bool": "a boolean", "timesta
           "map": "a mapping", "set": "a set", "omap": "an ordered mapping", "pairs": "pairs"}
 
 
+_COLLECTIONS = {"sequence": "a sequence", "mapping": "a mapping"}
+
+
 def unconstructable(node, error: Exception):
     """The ConstructorError, at ``node``, of a value PyYAML's constructor of its tag raised
     ``error`` for (a Python error, not a YAML one): what was written, what YAML 1.1 makes of it
@@ -151,7 +154,8 @@ def unconstructable(node, error: Exception):
 
     tag = node.tag
     what = _KINDS.get(tag.rsplit(":", 1)[-1], tag) if tag.startswith("tag:yaml.org,2002:") else tag
-    written = f"'{shown_word(node.value)}'" if isinstance(node, yaml.ScalarNode) else f"a {node.id}"
+    written = f"'{shown_word(node.value)}'" if isinstance(node, yaml.ScalarNode) else \
+        _COLLECTIONS.get(node.id, node.id)
     why = str(error) if isinstance(error, (ValueError, OverflowError)) and str(error) else \
         f"no {what.split(' ', 1)[-1]} YAML 1.1 knows"
     return yaml.constructor.ConstructorError(

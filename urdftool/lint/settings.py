@@ -200,14 +200,13 @@ def foreign(file: Path) -> str | None:
     leaves in ``/tmp`` would select and ignore the rules of a check of an archive unpacked
     below it. None for a file that may be read. The one decision, which the check, the
     language server and the pytest plugin each say (:attr:`Settings.skipped`)."""
+    from urdftool.description.files import owner as owner_of
+
     uid = getattr(os, "geteuid", None)
     if uid is None:  # (no owners to compare)
         return None
-    try:
-        owner = os.stat(file).st_uid
-    except OSError:
-        return None
-    if owner in (uid(), 0):
+    owner = owner_of(file)
+    if owner is None or owner in (uid(), 0):
         return None
     return (f"settings file '{file}' not read: it belongs to another user (uid {owner}) and "
             "lies in no repository (as git reads no repository another user owns); give it "
@@ -300,11 +299,15 @@ def _long_number(text: str):
     """Where tomllib's ValueError is: the first run of digits longer than Python converts
     that is not inside a string on its line (an even number of quotes of each kind before it
     there), or None."""
+    from urdftool.diagnostics import lines_of
     from urdftool.numbers import long_integers
 
+    lines = None
     for found in long_integers(text):
-        line = text[text.rfind("\n", 0, found.start()) + 1:found.start()]
-        if line.count('"') % 2 == 0 and line.count("'") % 2 == 0:
+        lines = lines or lines_of(text)
+        line = lines[line_at(text, found.start()) - 1]
+        before = line[:line.find(found.group()[:40])]
+        if before.count('"') % 2 == 0 and before.count("'") % 2 == 0:
             return found
     return None
 
