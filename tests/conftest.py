@@ -474,3 +474,12 @@ def counting_str(compared: list):
         __hash__ = str.__hash__
 
     return Name
+
+
+def another_users(path, monkeypatch) -> None:
+    """Make ``path`` another user's file: chown it when root, else pretend to be someone else
+    (``os.geteuid``, which :func:`urdftool.lint.settings.foreign` asks)."""
+    if os.geteuid() == 0:
+        os.chown(path, 54321, 54321)
+    else:
+        monkeypatch.setattr(os, "geteuid", lambda: os.stat(path).st_uid + 1)

@@ -151,6 +151,7 @@ def test_no_path_is_nothing_checked_not_a_pass():
     ({"strict": "no"}, 'strict must be True or False, not "no"'),
     ({"timeout": float("nan")}, "timeout must be a finite number of seconds"),
     ({"timeout": float("inf")}, "timeout must be a finite number of seconds"),
+    ({"timeout": 10 ** 400}, "timeout must be a finite number of seconds"),  # (OverflowError)
     ({"max_triangles": float("nan")}, "max_triangles must be a whole number"),
     ({"jobs": -5}, "jobs must be a whole number, 0 or more, not -5"),
     ({"xacro_args": "a:=1"}, "xacro_args must map names"),

@@ -127,6 +127,23 @@ def test_settings_apply_to_items(project):
     result.assert_outcomes(passed=2)
 
 
+def test_a_settings_file_another_user_owns_is_said_by_the_items_and_the_fixture(project, monkeypatch):
+    """The check says it did not read another user's settings file outside a repository
+    (lint.settings.foreign); the plugin, which runs the same check, said nothing: a warning of
+    the test that ran the check, in pytest's summary."""
+    from conftest import another_users
+
+    (project.path / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    another_users(project.path / "urdftool.toml", monkeypatch)
+    project.makepyfile(test_own="def test_own(urdftool_check):\n"
+                                "    urdftool_check('robots/humanoid')\n")
+    result = project.runpytest_inprocess("--urdftool", "robots", "test_own.py", "-p",
+                                         "no:cacheprovider", "-p", "no:xdist")
+    result.assert_outcomes(passed=2, failed=1, warnings=2)  # U204 of broken.urdf not ignored
+    result.stdout.fnmatch_lines(["*UrdftoolWarning: urdftool: settings file '*urdftool.toml' "
+                                 "not read: it belongs to another user*"])
+
+
 def test_a_settings_file_that_stops_every_item_fails_each_in_one_line(project):
     """Broken settings above every robot: ``check`` refuses the run (exit 2, one line); each
     item failed with a traceback of urdftool's runner ending in the SettingsError."""

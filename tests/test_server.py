@@ -777,6 +777,25 @@ def _package(root: Path) -> Path:
     return package / "urdf" / "robot.urdf.xacro"
 
 
+def test_a_settings_file_another_user_owns_is_shown_once_as_the_check_says_it(offline_server,
+                                                                              tmp_path, monkeypatch):
+    """urdftool check says it did not read another user's settings file outside a repository
+    (lint.settings.foreign); the server, checking with the same core, said nothing."""
+    from conftest import another_users
+    from urdftool.server import check_robot
+
+    server, _ = offline_server
+    shown = []
+    monkeypatch.setattr(server, "window_show_message", lambda params: shown.append(params.message))
+    (tmp_path / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    another_users(tmp_path / "urdftool.toml", monkeypatch)
+    robot = str(write_robot(tmp_path))
+    for ticket in (1, 2):
+        server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=ticket)
+    assert len(shown) == 1 and shown[0].startswith(
+        f"urdftool: settings file '{tmp_path / 'urdftool.toml'}' not read: it belongs to another user")
+
+
 def test_the_record_of_a_check_says_which_changes_concern_a_robot(offline_server, tmp_path):
     from urdftool.server import check_robot
 

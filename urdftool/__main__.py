@@ -622,9 +622,11 @@ def plain_words(words: list[str], parameters: list[list[str]]) -> dict | None:
                 if read - read != 0:  # NaN or infinite: Typer's usage error (cli._finite_numbers)
                     return None
             else:
-                read = int(value)
-                if kind.startswith("int>=") and read < int(kind[5:]):
-                    return None
+                from urdftool.numbers import in_int64
+
+                read = int(value)  # (past 4,300 digits a ValueError: Typer's usage error)
+                if kind.startswith("int>=") and read < int(kind[5:]) or not in_int64(read):
+                    return None  # (past an int64: Typer's usage error, cli._bounded_integers)
         except ValueError:
             return None
         if kind in ("texts", "paths"):

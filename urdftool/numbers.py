@@ -21,11 +21,20 @@ rule instead of reaching the rule's own test for non-finite values.
 squares to zero and looks like no direction at all. Scaled by its largest part first, every
 finite vector that is not zero has a length (infinite only when the length itself is beyond
 the largest float) and a direction.
+
+:func:`integer` is the one conversion of a stranger's text to an integer (YAML, the command
+line's counts and seeds; TOML and JSON convert their own, and their readers ask
+:func:`long_integer` where the one too long is): Python's ``int()`` refuses a decimal of more
+than :data:`MAX_INT_DIGITS` digits with a ValueError no reader expected (a traceback).
+:func:`double_problem` says an integer no double holds (``float()`` of it raises
+OverflowError, where a number written ``1e400`` is ``inf``); :data:`INT64` is what an integer
+parameter of ROS 2 (and a numpy count) holds.
 """
 
 from __future__ import annotations
 
 import math
+import re
 import sys
 from collections.abc import Iterable
 
@@ -41,6 +50,79 @@ SQUARABLE = 1e150
 # rounded to nothing (a reach of 0 m), squared to inf (ik, collisions' distances) or NaN
 # (dynamics, render), and FCL's matrix failed with a message of its own
 MAX_COORDINATE = 2.0 ** 62 / 1e8
+
+
+# Python's int() converts a decimal of at most this many digits (sys.int_info's default; the
+# conversion is quadratic, so Python refuses longer ones with a ValueError)
+MAX_INT_DIGITS = 4300
+INT64 = (-2 ** 63, 2 ** 63 - 1)  # what a ROS 2 integer parameter (int64_t), and numpy's sizes, hold
+_DIGITS = re.compile(r"[0-9](?:_?[0-9])*")
+
+
+class NumberRefused(ValueError):
+    """A number read from a file that no reader of it holds; the message says why."""
+
+
+class TooLong(NumberRefused):
+    """A decimal integer longer than Python converts (:data:`MAX_INT_DIGITS`)."""
+
+
+def too_long(characters: int) -> TooLong:
+    return TooLong(f"an integer of {characters:,} characters, longer than any number a "
+                   f"configuration holds (Python converts {MAX_INT_DIGITS:,} digits)")
+
+
+def long_integers(text: str):
+    """The runs of decimal digits in ``text`` longer than Python converts (matches: their
+    ``start()`` locates them): where a reader that converts its own numbers (tomllib) raised
+    its ValueError."""
+    for found in _DIGITS.finditer(text):
+        if len(found.group()) > MAX_INT_DIGITS and \
+                len(found.group().replace("_", "")) > MAX_INT_DIGITS:
+            yield found
+
+
+def long_integer(text: str):
+    """The first of :func:`long_integers`, or None."""
+    return next(long_integers(text), None)
+
+
+def is_decimal(text: str) -> bool:
+    """Whether ``text`` is ASCII digits 0-9 alone (one at least): a number as C's strtol and a
+    file format read it. ``str.isdigit()`` also takes ``'²'`` (which ``int()`` refuses with a
+    ValueError) and ``'٣'`` (which ``int()`` reads and C does not)."""
+    return text.isascii() and text.isdigit()
+
+
+def integer(text: str, base: int = 10) -> int:
+    """``int(text, base)``: :class:`TooLong` for a decimal longer than Python converts (in a
+    base that is a power of two Python converts any length in linear time), ValueError for
+    text that is no integer."""
+    if base not in (2, 4, 8, 16, 32) and len(text) > MAX_INT_DIGITS and \
+            sum(character.isdigit() for character in text) > MAX_INT_DIGITS:
+        raise too_long(len(text))
+    return int(text, base)
+
+
+def double_problem(value: int) -> NumberRefused | None:
+    """Why the integer ``value`` is no number a double holds (past 1.8e308: ``float()`` raises
+    OverflowError), or None."""
+    try:
+        float(value)
+    except OverflowError:
+        bits = abs(value).bit_length()  # (str() of one past 4,300 digits raises: a
+        # hexadecimal integer has no limit)
+        digits = f"{len(str(abs(value))):,}" if bits < 14_000 else \
+            f"some {math.floor((bits - 1) * math.log10(2)) + 1:,}"
+        return NumberRefused(f"an integer of {digits} digits, past the largest double "
+                             f"({sys.float_info.max:.2g}): no number a configuration holds is "
+                             "that large (a ROS integer parameter is an int64 at most)")
+    return None
+
+
+def in_int64(value: int) -> bool:
+    """Whether the integer ``value`` is one an int64 holds (:data:`INT64`)."""
+    return INT64[0] <= value <= INT64[1]
 
 
 def power(base, exponent):

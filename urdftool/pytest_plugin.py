@@ -204,18 +204,35 @@ def _checked_with_the_session(item):
 
     config = item.config
     if hasattr(config, "workerinput"):
-        return _check([str(item.path)])
+        return _said(_check([str(item.path)]))
     results = config.stash.get(_TOGETHER, None)
     if results is None:
         paths = [str(other.path) for other in item.session.items if isinstance(other, RobotItem)]
         with one_run(config.stash.setdefault(_RUN, {})):
-            together = _check(paths, jobs=None)  # worker processes as urdftool check chooses
-        results = {real_path(result.path): result for result in together.results}
+            together = _said(_check(paths, jobs=None))  # worker processes as urdftool check
+        results = {real_path(result.path): result for result in together.results}  # chooses
         config.stash[_TOGETHER] = results
     result = results.get(real_path(item.path))
     if result is None:
-        return _check([str(item.path)])
+        return _said(_check([str(item.path)]))
     return Run([result], strict=[result.strict])
+
+
+class UrdftoolWarning(UserWarning):
+    """What ``urdftool check`` says on standard error of a run that checked (a settings file
+    another user owns, not read: :func:`urdftool.lint.settings.foreign`), said as a warning of
+    the test that ran the check (pytest's warnings summary; ``-W error`` fails on it)."""
+
+
+def _said(run):
+    """``run``, its notes said (:class:`UrdftoolWarning`), as the command line prints them."""
+    import warnings
+
+    from urdftool.report.escape import text
+
+    for note in run.notes:
+        warnings.warn(UrdftoolWarning(text(f"urdftool: {note}")), stacklevel=2)
+    return run
 
 
 def _check(paths, **options):
@@ -250,7 +267,7 @@ def urdftool_check():
         from urdftool.report.escape import text
 
         try:
-            run = _check(list(paths), **options)  # (str() made b"urdf" the path "b'urdf'")
+            run = _said(_check(list(paths), **options))  # (str() made b"urdf" the path "b'urdf'")
         except REFUSALS as error:  # in one line, as an item says it: no traceback of urdftool's
             refused = text(f"urdftool: error: {error}")
         else:

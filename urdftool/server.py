@@ -119,6 +119,9 @@ class Outcome:
         (:class:`~urdftool.description.record.Record`), None when it raised
     error: why the check raised, instead of findings: a UrdftoolError's message (a settings
         file in error: ``user_error``) or a traceback (a bug)
+    unread: the settings files above it not read (another user's, in no repository:
+        :func:`urdftool.lint.settings.foreign`), in words: shown once each, as ``urdftool
+        check`` says them
     """
 
     robot: str
@@ -129,6 +132,7 @@ class Outcome:
     error: str | None = None
     user_error: bool = False
     seconds: float = 0.0
+    unread: tuple = ()
 
 
 def robots_for(path: str, kind: str | None) -> list[str]:
@@ -178,6 +182,7 @@ def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
     finally:
         outcome.seconds = time.monotonic() - started
         outcome.versions = {path: buffers[path].version for path in served}
+    outcome.unread = _settings_unread(robot)
     sources = {}
     if result.robot is not None:
         sources = {os.path.abspath(name): data.decode("utf-8", "replace")
@@ -186,6 +191,18 @@ def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
     outcome.by_path = diagnostics_by_path(result.findings, texts, codec, uri_of=texts.uri)
     outcome.by_path.setdefault(robot, [])
     return outcome
+
+
+def _settings_unread(robot: str) -> tuple:
+    """The settings files above ``robot`` its check did not read (:attr:`urdftool.lint.
+    settings.Settings.skipped`), as the check looked for them."""
+    from urdftool.errors import UrdftoolError
+    from urdftool.lint.settings import settings_for
+
+    try:
+        return settings_for(robot).skipped
+    except UrdftoolError:  # (a settings file in error: the check said so)
+        return ()
 
 
 class _Texts:
@@ -460,6 +477,7 @@ class UrdftoolServer(LanguageServer):
         self.pending: dict[str, asyncio.Task] = {}
         self.tickets = itertools.count(1)
         self.errors_shown: set[str] = set()
+        self.unread_shown: set[str] = set()  # the settings files not read, said
 
     # -- documents
 
@@ -655,6 +673,12 @@ class UrdftoolServer(LanguageServer):
                 self.window_show_message(types.ShowMessageParams(
                     type=types.MessageType.Error, message=f"urdftool: {what} {shown}: {headline}"))
             return
+        for why in outcome.unread:  # once each, as the check says it on every run
+            if why not in self.unread_shown:
+                self.unread_shown.add(why)
+                self._log(types.MessageType.Warning, f"urdftool: {why}")
+                self.window_show_message(types.ShowMessageParams(
+                    type=types.MessageType.Warning, message=f"urdftool: {why}"))
         stale = self._stale(outcome)
         if stale:  # it read an older version: the newer one's job publishes; a buffer closed
             if robot not in stale and any(path not in self.open for path in stale):

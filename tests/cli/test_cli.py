@@ -332,6 +332,47 @@ def test_every_float_option_refuses_nan_and_infinity():
             assert kind.convert("0.5", param, None) == 0.5, (name, option)
 
 
+def test_every_integer_option_is_converted_once_and_held_within_int64():
+    """click's int() of 5,000 digits said "is not a valid integer" quoting every digit, and
+    an integer past int64 reached numpy (fk --random 10**30: "Maximum allowed dimension
+    exceeded", a traceback) or a pool (collisions --workers 10**30 forked until stopped). One
+    guard (cli._bounded_integers, numbers.integer) for every integer option of every
+    command."""
+    from typer._click.exceptions import BadParameter
+    from typer._click import types
+
+    from urdftool.cli import COMMANDS, command
+
+    found = [(name, param) for name in COMMANDS for param in command(name).params
+             for kind in (param.type.types if isinstance(param.type, types.Tuple) else [param.type])
+             if isinstance(kind, types.IntParamType)]
+    assert len(found) >= 15 and {"--seed", "--samples", "--workers", "--jobs", "--random"} <= \
+        {max(param.opts, key=len) for _, param in found}
+    for name, param in found:
+        with pytest.raises(BadParameter, match=r"too long: an integer of 5,000 characters") as raised:
+            param.type.convert("9" * 5000, param, None)
+        assert len(str(raised.value)) < 400
+        with pytest.raises(BadParameter, match="int64|range"):
+            param.type.convert(str(2 ** 63), param, None)
+        assert param.type.convert(str(2 ** 63 - 1), param, None) == 2 ** 63 - 1 or \
+            getattr(param.type, "max", None) is not None, (name, param.opts)
+
+
+@pytest.mark.parametrize("words", [["fk", "--random", str(10 ** 30)], ["check", "--jobs", str(10 ** 30)]])
+def test_an_integer_past_int64_is_a_usage_error(tmp_path, words):
+    """Through the real door too: check's plain words are read without Typer (__main__)."""
+    import subprocess
+    import sys
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="a"/><link name="b"/><joint name="j" '
+                     'type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
+                     '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>')
+    result = subprocess.run([sys.executable, "-m", "urdftool", words[0], str(robot), *words[1:]],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 2 and "int64" in result.stderr, result.stderr
+
+
 @pytest.mark.parametrize("words", [["check", "--timeout", "nan"], ["check", "--timeout", "1e999"],
                                    ["inertia", "--density", "nan"],
                                    ["ik", "--tip", "b", "--xyz", "0", "nan", "0"]])

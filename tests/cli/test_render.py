@@ -40,6 +40,8 @@ def test_render_svg_names_each_link(tmp_path, run_cli):
     (["-o", "{tmp}/x.jpg"], "must end in .png or .svg"),
     (["-o", "{tmp}/x.png", "--view", "back"], "--view must be one of"),
     (["-o", "{tmp}/x.png", "--size", "600"], "--size must be WIDTHxHEIGHT"),
+    (["-o", "{tmp}/x.png", "--size", "1\u00b2x100"], "--size must be WIDTHxHEIGHT"),  # int():
+    (["-o", "{tmp}/x.png", "--size", "100x" + "9" * 5000], "(5004 characters)"),  # ValueError
     (["-o", "{tmp}/x.png", "--q", "elbw=1"], "--q: unknown joint 'elbw'"),
     (["-o", "{tmp}/missing/x.png"], "does not exist"),
 ])

@@ -305,6 +305,20 @@ def test_matrix_is_deterministic_for_a_seed_and_any_worker_count(tmp_path):
 
 
 
+@pytest.mark.parametrize("samples, until, most", [(1000, False, 4), (1000, True, 640)])
+def test_the_matrix_starts_no_more_workers_than_blocks(tmp_path, monkeypatch, samples, until, most):
+    """collisions --matrix --workers 10**18 asked the pool for that many processes, which
+    forked until the budget stopped them, for 4 blocks of samples."""
+    import contextlib
+
+    asked = []
+    monkeypatch.setattr(matrix, "_pool", lambda workers: asked.append(workers) or
+                        contextlib.nullcontext(None))
+    robot = robot_of(tmp_path, two_boxes(0.2, 0.5))
+    matrix.compute(robot, samples=samples, workers=10 ** 18, until_converged=until)
+    assert asked == [most]
+
+
 def test_progress_reports_every_block_up_to_the_planned_total(tmp_path):
     robot = robot_of(tmp_path, two_boxes(0.2, 0.5))
     calls = []

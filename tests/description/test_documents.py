@@ -153,7 +153,103 @@ def test_an_integer_past_pythons_digits_is_a_located_yaml_error(tmp_path):
     assert parsed.data is None and parsed.line == 2 and "5,000 characters" in parsed.problem
     with pytest.raises(yaml.YAMLError, match="5,000 characters"):
         yaml.load(path.read_text(), Loader=BoundedLoader)  # noqa: S506 - the safe loader
-    assert yaml.load("a: 0x" + "f" * 5000, Loader=BoundedLoader)["a"] == 16 ** 5000 - 1  # noqa: S506
+    assert yaml.load("a: 0x" + "f" * 250, Loader=BoundedLoader)["a"] == 16 ** 250 - 1  # noqa: S506
+
+
+# values YAML's grammar lets through that PyYAML's constructors raise Python's own errors for
+# (or refuse): each was a traceback (U900 from every rule reading companions, fk --dh's own)
+UNCONSTRUCTABLE = [
+    ("a: 2001-02-30\n", "a date (tag:yaml.org,2002:timestamp): day is out of range for month"),
+    ("a: 2001-01-01 00:00:00 +99:00\n", "a date"),
+    ("a: !!timestamp x\n", "'x' cannot be constructed as a date"),
+    ("a: !!float junk\n", "'junk' cannot be constructed as a float"),
+    ("a: !!int junk\n", "'junk' cannot be constructed as an integer"),
+    ("a: 0b_\n", "'0b_' cannot be constructed as an integer"),
+    ("a: !!bool maybe\n", "'maybe' cannot be constructed as a boolean"),
+    ("a: !!map abc\n", "expected a mapping node, but found scalar"),
+    ("a: !!seq abc\n", "expected a sequence node, but found scalar"),
+    ("a: !!map [a, b]\n", "expected a mapping node, but found sequence"),
+    ("a: !!python/name:os.system x\n", "could not determine a constructor"),
+    ("a: {<<: 5}\n", "expected a mapping or list of mappings for merging"),
+    ("a: " + "1" * 400 + "\n", "an integer of 400 digits, past the largest double"),
+]
+
+
+@pytest.mark.parametrize("text, words", UNCONSTRUCTABLE)
+def test_a_value_pyyaml_cannot_construct_is_a_located_yaml_error_in_every_loader(tmp_path, text, words):
+    """``2001-02-30`` (a date to YAML 1.1, and none), ``!!float junk``, ``!!bool maybe``, a
+    ``!!map`` of a scalar: PyYAML's constructors raised ValueError, KeyError, AttributeError,
+    TypeError, which no reader caught (U900 from 61 rules, fk --dh's traceback). The one guard
+    of every loader (yaml_limits.DepthLimit.construct_object) makes each a YAML error at the
+    value's line, saying what was written and what YAML made of it; an integer past a double
+    too (float() of it raised OverflowError in the rules reading numbers)."""
+    import yaml
+
+    from urdftool.description.yaml_limits import BoundedLoader, OnceLoader
+
+    path = tmp_path / "c.yaml"
+    path.write_text("first: 1\n" + text)
+    parsed = read_yaml(path)
+    assert parsed.data is None and parsed.line == 2 and words in parsed.problem
+    for loader in (BoundedLoader, OnceLoader):
+        with pytest.raises(yaml.YAMLError) as raised:
+            yaml.load(path.read_text(), Loader=loader)  # noqa: S506 - the safe loaders
+        assert raised.value.problem_mark.line == 1
+
+
+@pytest.mark.parametrize("text, words", UNCONSTRUCTABLE)
+def test_what_pyyaml_cannot_construct_in_a_ros2_parameter_file_is_read_as_ros2_reads_it(tmp_path, text, words):
+    """rcl_yaml_param_parser types each plain scalar itself (a boolean, an integer, a double,
+    else a string), reads no dates and constructs no tag but ``!!str``: ``2001-02-30`` is a
+    string parameter to ROS 2, and a node given the file loads it. Only what loads it with
+    PyYAML fails (a Python launch file), so such a value is read as its text with a caution
+    saying so at its line, not the file's error; a launch file, which only PyYAML reads, keeps
+    the error."""
+    path = tmp_path / "c.yaml"
+    indented = text.replace("\n", "\n    ").rstrip(" ")
+    path.write_text("node:\n  ros__parameters:\n    first: 1\n    " + indented)
+    parsed = read_yaml(path)
+    assert parsed.problem is None and parsed.line == 4
+    assert words in parsed.caution and "ROS 2's parameter parser reads it as written" in parsed.caution
+    assert "PyYAML (yaml.safe_load) fails" in parsed.caution
+    value = parsed.data["node"]["ros__parameters"]["a"]
+    assert isinstance(value, (str, list)) or value == {"<<": 5}
+    if "past the largest double" not in words:  # (to a launch file an integer is text)
+        assert read_yaml(path, parameters=False).line == 4 and read_yaml(path, parameters=False).problem
+
+
+def test_an_alias_in_a_ros2_parameter_file_is_a_caution_naming_who_refuses_it(tmp_path):
+    """rcl_yaml_param_parser refuses every alias ("Will not support aliasing"): a node given
+    such a file as its parameters fails to start, which nothing said; a launch file loading it
+    with PyYAML reads it, so a caution, at the alias, not the file's error."""
+    path = tmp_path / "c.yaml"
+    path.write_text("defaults: &d {p: 1}\nnode:\n  ros__parameters:\n    <<: *d\n    q: 2\n")
+    parsed = read_yaml(path)
+    assert parsed.problem is None and parsed.data["node"]["ros__parameters"] == {"p": 1, "q": 2}
+    assert parsed.line == 4 and "refuses every alias" in parsed.caution
+    path.write_text("defaults: &d {p: 1}\nnode:\n  params: *d\n")  # ROS 1: rosparam reads it
+    assert read_yaml(path).caution is None
+
+
+def test_merge_keys_and_unknown_tags_are_read_as_pyyaml_reads_them(tmp_path):
+    """The companions' loader never flattened merge keys (``<<: *defaults``, which rosparam
+    reads): every file using one was "could not determine a constructor for the tag
+    'tag:yaml.org,2002:merge'" (U601); and a mapping under an unknown tag (``!foo {type:
+    ...}``) was read empty (its constructor's generator cut at its first step)."""
+    path = tmp_path / "c.yaml"
+    path.write_text("base: &b {joints: [a], rate: 1}\nc:\n  <<: *b\n  rate: 2\n"
+                    "d: !foo {type: x/Y, joints: !bar [j]}\n")
+    data = read_yaml(path).data
+    assert data["c"] == {"joints": ["a"], "rate": 2} and data["c"].lines == {"joints": 1, "rate": 4}
+    assert data["d"] == {"type": "x/Y", "joints": ["j"]} and data["d"].lines["joints"] == 5
+
+
+def test_an_integer_past_a_double_is_an_integer_to_a_launch_file(tmp_path):
+    """A launch file's readers take an integer as text (ROS 2's launch YAML turns a value into
+    a string): no double bounds it there."""
+    path = tmp_path / "x.launch.yaml"
+    path.write_text("launch:\n- arg: {name: n, default: " + "1" * 400 + "}\n")
+    assert read_yaml(path, parameters=False).data["launch"][0]["arg"]["default"] == int("1" * 400)
 
 
 def _shape(value):

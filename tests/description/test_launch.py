@@ -89,6 +89,14 @@ def test_ros2_xml_and_yaml(tmp_path):
     assert [type(a).__name__ for a in yaml.actions] == ["Arg", "Start", "Include"]
 
 
+def test_a_yaml_launch_file_that_does_not_read_says_where(tmp_path):
+    """A YAML launch file PyYAML cannot construct (ROS 2's launch reads it with PyYAML) said
+    why and not where: U620 named the file alone."""
+    root = _repo(tmp_path, {"p/launch/b.launch.yaml": "launch:\n- arg: {name: when, default: 2001-02-30}\n"})
+    launch = read_launch(root / "p/launch/b.launch.yaml")
+    assert launch.problem_line == 2 and "day is out of range for month" in launch.problem
+
+
 PYTHON = '''
 import os
 from ament_index_python.packages import get_package_share_directory

@@ -49,6 +49,24 @@ def generate_launch_description():
     assert _text(described.file) == "<find:p>/urdf/arm.urdf" and not described.xacro
 
 
+def test_a_list_indexed_by_a_digit_int_does_not_read_is_unknown_not_a_crash(tmp_path):
+    """``files["²"]``: str.isdigit() takes '²' and int() refuses it, so reading the launch file
+    raised ValueError (58 rules crashed, U900, on the robot it builds; a traceback of ``check
+    a.launch.py``). An index is ASCII digits, as Python's own literals are."""
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch.py": '''
+from launch_ros.actions import Node
+
+def generate_launch_description():
+    files = ["urdf/arm.urdf", "urdf/b.urdf"]
+    second = files[1]
+    return LaunchDescription([Node(package="robot_state_publisher",
+                                   executable="robot_state_publisher",
+                                   parameters=[{"robot_description": files["²"] + second}])])
+'''})
+    read = _read(root, "p/launch/a.launch.py")
+    assert read.problem is None and read.actions  # (read, its node started)
+
+
 def test_find_package_share_find_is_the_packages_share_folder(tmp_path):
     root = _repo(tmp_path, {"p/launch/a.launch.py": '''
 import os

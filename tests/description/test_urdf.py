@@ -62,3 +62,18 @@ def test_the_copy_finder_sees_a_copy():
     assert _LIST.search('MOVE = ("revolute", "continuous", "prismatic")')
     assert _LIST.search("if tag in ('box', 'cylinder', 'sphere'):")
     assert not _LIST.search('kind in ("revolute", "prismatic")')
+
+
+@pytest.mark.parametrize("written, said", [
+    ("1\u00b3.0", "is not of the form MAJOR.MINOR"),  # str.isdigit() took it, int() refused it
+    ("1.\u0663", "is not of the form MAJOR.MINOR"),  # int() reads it, urdfdom does not
+    ("9" * 5000 + ".0", "(5002 characters) is not supported"),  # past int()'s digits
+    ("1.2", None), ("01.0", None), ("1.3", "is not supported"),
+])
+def test_a_version_that_is_no_ascii_number_is_said_not_crashed(written, said):
+    """U012 crashed (U900: ValueError) on ``<robot version="1³.0">`` and on a major version
+    of 5,000 digits."""
+    from urdftool.description.urdf import version_problem
+
+    problem = version_problem(written)
+    assert problem is None if said is None else said in problem

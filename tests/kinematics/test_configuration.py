@@ -235,9 +235,11 @@ def test_the_json_reader_says_what_the_whole_document_read_at_once_says(monkeypa
 
     from urdftool.errors import ConfigError
 
-    def whole(text):  # (main's reader, as it was: json.loads, then the rows' checks)
+    def whole(text):  # (main's reader, as it was: json.loads, then the rows' checks; its
+        # numbers kept as written, as the reader keeps them)
         try:
-            data = json.loads(text, object_pairs_hook=config._once_each)
+            data = json.loads(text, object_pairs_hook=config._once_each,
+                              parse_int=config._Number, parse_float=config._Number)
         except config._Twice as error:
             return f"q.json: joint '{error.args[0]}' is given twice in one object"
         except json.JSONDecodeError as error:

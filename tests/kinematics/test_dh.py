@@ -269,6 +269,22 @@ def test_a_table_writing_a_key_twice_is_a_located_error(humanoid, tmp_path, old,
         assert caught.value.where == f"{path}:{line}"
 
 
+@pytest.mark.parametrize("old, new", [
+    ("  d: 0.0\n", "  d: " + "1" * 400 + "\n"),  # float() of it: OverflowError
+    ("  d: 0.0\n", "  d: 2001-02-30\n"),  # a date to YAML 1.1, and none: ValueError
+    ("  d: 0.0\n", "  d: !!bool x\n"),  # KeyError
+    ("  - 0.0\n", "  - " + "1" * 400 + "\n"),  # numpy's OverflowError in a matrix
+])
+def test_a_table_value_pyyaml_cannot_construct_is_a_located_error(humanoid, tmp_path, old, new):
+    table = dh.extract(humanoid, "body_link", "r_foot_link").as_dict()
+    text = yaml.safe_dump(table, sort_keys=False).replace(old, new, 1)
+    path = tmp_path / "t.yaml"
+    path.write_text(text)
+    with pytest.raises(dh.DHError, match="invalid JSON/YAML: ") as caught:
+        dh.load_table(str(path))
+    assert caught.value.where == f"{path}:{text[:text.index(new)].count(chr(10)) + 1}"
+
+
 def test_cli_dh_json_then_fk_verify(run_cli, tmp_path):
     result = run_cli("dh", HUMANOID, "--base", "body_link", "--tip", "l_foot_link", "-f", "json")
     assert result.exit_code == 0, result.output

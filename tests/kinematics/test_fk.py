@@ -515,6 +515,15 @@ def test_every_random_stream_comes_from_one_maker_that_refuses_a_negative_seed()
     assert [m for m in makers if not m.startswith("configuration.py:")] == [] and makers
 
 
+def test_a_draw_past_what_numpy_allocates_is_out_of_memory_not_its_traceback():
+    """fk --random, workspace/dynamics --samples, ik --seeds of 10^18 (an int64): numpy's
+    uniform raised ValueError "array is too big", a traceback, where 10^10 ran out of the
+    memory budget (U018). The one draw between limits says MemoryError for both."""
+    with pytest.raises(MemoryError):
+        config.within(config.random_stream(0), [-1.0, -1.0], [1.0, 1.0], (10 ** 18, 2))
+    assert config.within(config.random_stream(0), [-1.0], [1.0], (3, 1)).shape == (3, 1)
+
+
 def test_a_negative_seed_is_a_usage_error(run_cli, tmp_path):
     robot = tmp_path / "r.urdf"
     robot.write_text('<robot name="r"><link name="a"/><link name="b"/><joint name="j" '
@@ -524,16 +533,26 @@ def test_a_negative_seed_is_a_usage_error(run_cli, tmp_path):
     assert result.exit_code == 2 and "--seed must be an integer, 0 or more" in result.output
 
 
-@pytest.mark.parametrize("text", ['[{"j1": ' + "9" * 5000 + "}]", "[" * 100_000])
-def test_a_json_table_too_long_or_deep_for_python_is_a_config_error(tmp_path, text):
+@pytest.mark.parametrize("text, said", [
+    ('[{"j1": 0, "j2": 1}, {"j1": ' + "9" * 5000 + ', "j2": 1}]', "q.json: row 2: value '9999"),
+    ('[{"j1": 0, "j2": 1}, {"j1": 1, "j2": -' + "9" * 400 + "}]", "q.json: row 2: value '-999"),
+    ('[{"j1": 1e400, "j2": 1}]', "q.json: row 1: value '1e400' for joint 'j1' is not finite"),
+    ('[{"j1": [1, 2.50], "j2": 1}]', "q.json: row 1: value '[1, 2.50]' for joint 'j1' is not a number"),
+    ("[" * 100_000, "invalid JSON"),
+])
+def test_a_json_table_too_long_or_deep_for_python_is_a_config_error(tmp_path, text, said):
     """json.loads raises ValueError past int()'s 4,300 digits and RecursionError past its
-    nesting, neither a JSONDecodeError (fk --q-file, ik --targets/--check-reach: tracebacks)."""
+    nesting, neither a JSONDecodeError (fk --q-file, ik --targets/--check-reach: tracebacks);
+    an integer past a double was float()'s OverflowError (a traceback). A number is kept as
+    written and is not finite at its row, as the same number in a CSV file."""
     from urdftool.errors import ConfigError
 
     path = tmp_path / "q.json"
     path.write_text(text)
-    with pytest.raises(ConfigError, match="invalid JSON"):
+    with pytest.raises(ConfigError) as raised:
         config.read_table(str(path), "configurations", "joint")
+    assert said in f"{raised.value.where}: {raised.value}"
+    assert "not finite" in str(raised.value) or said == "invalid JSON" or "[1, 2.50]" in said
 
 
 @pytest.mark.parametrize("origin", ['xyz="0 0 0" rpy="inf 0 0"', 'xyz="nan 0 0"',

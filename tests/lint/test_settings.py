@@ -49,6 +49,25 @@ def settings(project, text: str, name: str = "pyproject.toml") -> None:
     (project / name).write_text(header + text)
 
 
+def test_a_settings_file_another_user_owns_outside_a_repository_is_not_read_and_said(
+        run_cli, project, monkeypatch):
+    """Outside a repository settings are looked for up to /: a pyproject.toml another local
+    user left in /tmp selected and ignored the rules of a check of an archive unpacked below
+    it, in silence. Not read, and said (git reads no repository another user owns); inside a
+    repository, or named with --config, it is the user's to read."""
+    from conftest import another_users
+
+    settings(project, 'ignore = ["U204"]\n')
+    another_users(project / "pyproject.toml", monkeypatch)
+    result = run_cli("check", project / "robots", "--format", "json")
+    assert sorted(d["code"] for d in json.loads(result.stdout)["diagnostics"]) == ["U204", "U206"]
+    assert f"urdftool: settings file '{project / 'pyproject.toml'}' not read: it belongs to " \
+           "another user" in result.stderr and "give it with --config" in result.stderr
+    assert codes(run_cli, project / "robots", "--config", project / "pyproject.toml") == (0, ["U206"])
+    (project / ".git").mkdir()
+    assert codes(run_cli, project / "robots") == (0, ["U206"])
+
+
 def test_no_settings(run_cli, project):
     assert codes(run_cli, project / "robots") == (1, ["U204", "U206"])
 
@@ -123,8 +142,10 @@ def test_max_file_size_out_of_range_is_a_usage_error(run_cli, project, value):
 
 
 def test_max_file_size_option_out_of_range_is_a_usage_error(run_cli, project):
-    result = run_cli("check", "--max-file-size", str(10 ** 20), project / "robots")
+    result = run_cli("check", "--max-file-size", str(2 ** 41), project / "robots")
     assert result.exit_code == 2 and "--max-file-size must be a whole number" in result.stderr
+    result = run_cli("check", "--max-file-size", str(10 ** 20), project / "robots")  # (no int64)
+    assert result.exit_code == 2 and "past what an integer option holds" in result.stderr
 
 
 def test_urdftool_toml_wins_over_pyproject_in_the_same_folder(run_cli, project):
@@ -719,9 +740,22 @@ def test_a_number_past_pythons_digits_is_a_settings_error(tmp_path, run_cli):
     TOMLDecodeError (the run ended in a traceback)."""
     (tmp_path / ".git").mkdir()
     (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
-    (tmp_path / "urdftool.toml").write_text("timeout = " + "9" * 5000 + "\n")
+    (tmp_path / "urdftool.toml").write_text('notes = false\nignore = ["' + "1" * 5000 + '"]\n'
+                                            "timeout = " + "9" * 5000 + "\n")
     result = run_cli("check", "--no-cache", tmp_path / "r.urdf")
-    assert result.exit_code == 2 and "a number too long for any setting" in result.output
+    assert result.exit_code == 2 and "urdftool.toml:3: an integer of 5,000 characters" in result.output
+
+
+@pytest.mark.parametrize("key", ["max-file-size", "max-triangles", "timeout", "max-memory", "notes",
+                                 "strict"])
+def test_an_integer_past_a_double_is_a_settings_error_quoting_it(tmp_path, run_cli, key):
+    """The one quoter of a settings value (inputs.shown) asked math.isfinite of an integer
+    past a double: OverflowError, a traceback for every key a 4,000-digit integer was given."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>')
+    (tmp_path / "urdftool.toml").write_text(f"{key} = " + "9" * 4000 + "\n")
+    result = run_cli("check", "--no-cache", tmp_path / "r.urdf")
+    assert result.exit_code == 2 and f"'{key}' must be" in result.output and "999..." in result.output
 
 
 def test_a_selection_of_100000_codes_is_matched_as_its_few_distinct_ones(tmp_path, monkeypatch):

@@ -150,6 +150,7 @@ def _uniform_options(built) -> None:
 
     for param in built.params:
         _finite_numbers(param)
+        _bounded_integers(param)
         if not isinstance(param, TyperOption) or param.is_flag:
             continue
         if param.help and "[default:" in param.help:
@@ -196,6 +197,55 @@ def _Finite(kind):
     finite = copy.copy(kind)
     finite.__class__ = finite_class(type(kind))
     return finite
+
+
+def _bounded_integers(param) -> None:
+    """Every integer a command reads (``--seed``, ``--samples``, ``--random``, ``--workers``,
+    ``--jobs``, ...) converted by :func:`urdftool.numbers.integer` and held within an int64:
+    click's ``int()`` of 5,000 digits said "is not a valid integer" and quoted them all, and
+    one past int64 reached numpy, which refused it with its own traceback ("Maximum allowed
+    dimension exceeded", fk --random 10**30) or forked for it (``collisions --workers``). The
+    one guard of the command line's integers, as :func:`_finite_numbers` is of its floats."""
+    from typer._click import types
+
+    if isinstance(param.type, types.Tuple):
+        param.type.types = [_Int64(kind) if isinstance(kind, types.IntParamType) else kind
+                            for kind in param.type.types]
+    elif isinstance(param.type, types.IntParamType):
+        param.type = _Int64(param.type)
+
+
+def _Int64(kind):
+    """A copy of click's integer type ``kind`` (``INT``, an ``IntRange``: its help and range
+    unchanged) converting by :func:`urdftool.numbers.integer` and refusing what an int64 does
+    not hold, each in a message that quotes the word cut (:func:`urdftool.errors.shown_word`)."""
+    import copy
+    import functools
+
+    @functools.cache
+    def bounded_class(base):
+        def convert(self, value, param, ctx):
+            from urdftool.errors import shown_word
+            from urdftool.numbers import INT64, TooLong, in_int64, integer
+
+            if isinstance(value, str):
+                try:
+                    value = integer(value.strip())
+                except TooLong as error:
+                    self.fail(f"'{shown_word(value.strip())}' is too long: {error}.", param, ctx)
+                except ValueError:
+                    self.fail(f"'{shown_word(value)}' is not a valid integer.", param, ctx)
+            number = base.convert(self, value, param, ctx)
+            if isinstance(number, int) and not in_int64(number):
+                self.fail(f"{shown_word(str(number))} is past what an integer option holds "
+                          f"(an int64: {INT64[0]} to {INT64[1]}).", param, ctx)
+            return number
+
+        return type(f"Bounded{base.__name__}", (base,), {"convert": convert})
+
+    bounded = copy.copy(kind)
+    bounded.__class__ = bounded_class(type(kind))
+    return bounded
 
 
 app = typer.Typer(

@@ -23,12 +23,16 @@ def register(app: typer.Typer) -> None:
 
 
 def parse_size(text: str) -> tuple[int, int]:
-    """``WIDTHxHEIGHT`` (each 16 to 8192 pixels) as a pair; UsageError otherwise."""
-    width, _, height = text.lower().partition("x")
-    if not (width.isdigit() and height.isdigit()) or not (
-            16 <= int(width) <= 8192 and 16 <= int(height) <= 8192):
-        raise UsageError(f"--size must be WIDTHxHEIGHT in pixels, each 16 to 8192, not '{text}'")
-    return int(width), int(height)
+    """``WIDTHxHEIGHT`` (each 16 to 8192 pixels) as a pair; UsageError otherwise (``1²x100``
+    and a side of 5,000 digits were int()'s ValueError, a traceback)."""
+    from urdftool.errors import shown_word
+    from urdftool.numbers import is_decimal
+
+    sides = text.lower().partition("x")[::2]
+    if not all(is_decimal(side) and len(side) < 6 and 16 <= int(side) <= 8192 for side in sides):
+        raise UsageError(f"--size must be WIDTHxHEIGHT in pixels, each 16 to 8192, not "
+                         f"'{shown_word(text)}'")
+    return int(sides[0]), int(sides[1])
 
 
 def render(

@@ -212,6 +212,9 @@ def compute(robot, samples: int = 10000, seed: int = 0, min_fraction: float = 0.
     blocks += blocks % 2
     done = 0
     planned = blocks * BLOCK
+    # no more worker processes than blocks to draw, ever (--workers 10**18 forked until the
+    # budget stopped it, for 40 blocks)
+    workers = min(workers, max(blocks, -(-max_samples // BLOCK) if until_converged else 0))
 
     def advance(count: int) -> None:
         nonlocal done

@@ -169,12 +169,13 @@ def _discover(robot) -> Companions:
         found.spec = _auto_yaml(folders, SPEC_NAMES, owner, found, lambda p: is_spec(p.data) or p.problem,
                                 "a urdftool joint spec")
     found.kinematics = _auto_yaml(folders, ("kinematics.yaml",), owner, found,
-                                  lambda p: p.problem is None and isinstance(p.data, dict), "MoveIt kinematics",
+                                  lambda p: p.problem is not None or isinstance(p.data, dict),
+                                  "MoveIt kinematics",
                                   picked)
     # a joint_limits.yaml beside the robot is often its xacro's input: MoveIt's is in its package
     moveit_folders = [f for f in folders if f.parent.name.endswith("_moveit_config")]
     found.planning_limits = _auto_yaml(moveit_folders, ("joint_limits.yaml",), owner, found,
-                                       lambda p: isinstance(p.data, dict)
+                                       lambda p: p.problem is not None or isinstance(p.data, dict)
                                        and "joint_limits" in p.data, "MoveIt/ROS joint limits", picked)
     if found.srdf is not None and not _written_for_another_srdf(found.srdf.path, picked):
         _beside_srdf(found, found.srdf.path)
@@ -231,8 +232,9 @@ def _beside_srdf(found: Companions, srdf: Path) -> None:
     if found.kinematics is None and (path := here("kinematics.yaml")):
         found.kinematics = read_yaml(path)
         found.used[path] = "beside the SRDF"
-    if found.planning_limits is None and (path := here("joint_limits.yaml")):
-        limits = read_yaml(path)
+    if found.planning_limits is None and (path := here("joint_limits.yaml")) and not (
+            found.spec is not None and real_path(found.spec.path) == real_path(path)):
+        limits = read_yaml(path)  # (a spec that does not read is said as the spec's)
         if not is_spec(limits.data):
             found.planning_limits = limits
             found.used[path] = "beside the SRDF"

@@ -24,6 +24,8 @@ import math
 import re
 
 from urdftool.description import data
+from urdftool.errors import shown_word
+from urdftool.numbers import INT64, in_int64
 from urdftool.records import Frozen, NEW
 
 # Distributions past their end of life: what only they have is reported as such.
@@ -237,7 +239,8 @@ def ros_type(value, ros: int = 2) -> str | None:
     if isinstance(value, bool):
         return "bool"
     if isinstance(value, int):
-        return "int"
+        return "int" if ros == 1 or in_int64(value) else "double"  # (rcl: strtoll's ERANGE,
+        # then strtod; past a double PyYAML's reading refuses it: yaml_limits)
     if isinstance(value, float):
         return "double"
     if isinstance(value, str):
@@ -283,7 +286,19 @@ def type_problem(parameter: Parameter, value, ros: int = 2) -> str | None:
         return None
     if ros == 1 and expected == "double_array" and given in ("int_array", "mixed_array"):
         return None
-    return f"{_shown(expected)}, not {_shown(given)}"
+    return f"{_shown(expected)}, not {_shown(given)}{_past_int64(value, ros)}"
+
+
+def _past_int64(value, ros: int) -> str:
+    """Why ROS 2 reads the integers of ``value`` as doubles, when it does: they are past int64
+    (rcl_yaml_param_parser's strtoll refuses them and strtod reads them); else nothing."""
+    items = value if isinstance(value, list) else [value]
+    past = [item for item in items if isinstance(item, int) and not isinstance(item, bool)
+            and not in_int64(item)]
+    if ros != 2 or not past:
+        return ""
+    return (f" ({shown_word(str(past[0]))} is past int64, {INT64[0]} to {INT64[1]}, which ROS 2 "
+            "reads as a double)")
 
 
 _SHOWN = {"bool": "a boolean", "int": "an integer", "double": "a double", "string": "a string",

@@ -57,12 +57,17 @@ def _loader():
         merge_repeated = False
 
         def construct_yaml_map(self, node):
+            if not isinstance(node, yaml.MappingNode):  # (``!!map abc``: PyYAML's words)
+                raise yaml.constructor.ConstructorError(
+                    None, None, f"expected a mapping node, but found {node.id}", node.start_mark)
+            merges = self._merged(node)
             data = YamlMap()
             data.line, data.lines = self.file_line(node.start_mark), {}
             yield data
             owned: set[int] = set()  # the maps this mapping's merges made (merged in place)
             for key_node, value_node in node.value:
-                key = self.construct_object(key_node, deep=True)
+                key = "<<" if key_node.tag == _MERGE and not merges else \
+                    self.construct_object(key_node, deep=True)
                 try:
                     hash(key)
                 except TypeError:
@@ -74,7 +79,31 @@ def _loader():
                 data[key] = value
                 data.lines[key] = self.file_line(key_node.start_mark)
 
+        def _merged(self, node) -> bool:
+            """Merge keys (``<<: *defaults``) flattened into ``node`` as PyYAML does (the keys
+            merged first, the mapping's own after them, so they win); True. A merge of what is no
+            mapping (``<<: 5``) is PyYAML's error; read leniently (ROS 2's parser knows no merge:
+            ``<<`` is a name to it) the mapping keeps ``<<`` as a key, noted, and False."""
+            if not any(key.tag == _MERGE for key, _ in node.value):
+                return True
+            written = list(node.value)
+            try:
+                self.flatten_mapping(node)
+                return True
+            except yaml.constructor.ConstructorError as error:
+                if not self.lenient:
+                    raise
+                node.value = written  # (flatten_mapping removed merge keys as it went)
+                if isinstance(self.unconstructed, tuple):
+                    self.unconstructed = []
+                self.unconstructed.append((self.file_line(error.problem_mark),
+                                           f"{error.problem} ({error.context})"))
+                return False
+
         def construct_yaml_seq(self, node):
+            if not isinstance(node, yaml.SequenceNode):  # (``!!seq abc``: PyYAML's words)
+                raise yaml.constructor.ConstructorError(
+                    None, None, f"expected a sequence node, but found {node.id}", node.start_mark)
             data = YamlList()
             data.line = self.file_line(node.start_mark)
             data.lines = [self.file_line(item.start_mark) for item in node.value]
@@ -84,14 +113,17 @@ def _loader():
         def construct_unknown(self, suffix, node):
             if isinstance(node, yaml.ScalarNode):
                 return self.construct_scalar(node)
-            if isinstance(node, yaml.SequenceNode):
-                return next(self.construct_yaml_seq(node))
-            return next(self.construct_yaml_map(node))
+            if isinstance(node, yaml.SequenceNode):  # (the generator itself: PyYAML fills
+                return self.construct_yaml_seq(node)  # it; its first item alone was empty)
+            return self.construct_yaml_map(node)
 
     _Loader.add_constructor("tag:yaml.org,2002:map", _Loader.construct_yaml_map)
     _Loader.add_constructor("tag:yaml.org,2002:seq", _Loader.construct_yaml_seq)
     _Loader.add_multi_constructor("!", _Loader.construct_unknown)
     return _Loader
+
+
+_MERGE = "tag:yaml.org,2002:merge"
 
 
 # A text holding one of these characters is read by PyYAML alone: each begins a case where
@@ -194,7 +226,8 @@ class CompanionFile(Record):
     line: int | None
     ros2: bool  # a ROS 2 parameter file (YAML with ros__parameters), read as ROS 2 does
     text: str | None  # an SRDF's text as read, for the fixes that edit it
-    # an SRDF that srdfdom reads but parsers following the XML standard refuse: why, at ``line``
+    # an SRDF that srdfdom reads but parsers following the XML standard refuse, a ROS 2
+    # parameter file ROS 2's parser reads but PyYAML cannot: why, at ``line``
     caution: str | None
     # YAML: how its launch files load it: True with substitution (subst_value, allow_substs:
     # its $(arg)/$(var) are replaced, by ``substitutions`` where known), False as written (a
@@ -232,9 +265,15 @@ _SUBSTITUTION = re.compile(r"\$\((?:arg|var)\s+([A-Za-z0-9_./-]+)\s*\)")
 
 
 def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None = None,
-              substitutions: dict[str, str] | None = None) -> YamlFile:
+              substitutions: dict[str, str] | None = None, parameters: bool = True) -> YamlFile:
     """Parse one YAML file; a syntax error becomes ``problem`` at the line YAML reports.
     as_: what it is read as, for the record (:mod:`.record`).
+
+    parameters: whether it is read as parameters, numbers computed with (False: a launch file,
+    a settings file, whose readers take any integer as text). A ROS 2 parameter file (with
+    ``ros__parameters``) holding a value PyYAML cannot construct, or an integer past a double,
+    is then read as ROS 2's parser reads it, with a ``caution`` at ``line``
+    (:func:`_unconstructed`); in any other file such a value is its ``problem``.
 
     substituted, substitutions: how launch files load it (see ``CompanionFile.substituted``):
     with substitution, each ``$(arg NAME)``/``$(var NAME)`` whose NAME ``substitutions`` holds
@@ -255,7 +294,9 @@ def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None 
         try:
             loader = fast(text)
             loader.merge_repeated = result.ros2
+            loader.lenient, loader.any_integer = result.ros2 and parameters, not parameters
             result.data = loader.get_single_data()
+            _as_ros2_reads(result, loader)
             return result
         except Exception:  # (libyaml's error, or a limit's: PyYAML's reading says it)
             result.data = None
@@ -266,8 +307,10 @@ def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None 
         result.problem = f"unacceptable character #x{error.character:04x}: {error.reason}"
         return result
     loader.merge_repeated = result.ros2
+    loader.lenient, loader.any_integer = result.ros2 and parameters, not parameters
     try:
         result.data = loader.get_single_data()
+        _as_ros2_reads(result, loader)
     except yaml.MarkedYAMLError as error:
         result.line = _error_line(error, text)
         result.problem = f"{error.problem or error}" + (f" ({error.context})" if error.context else "")
@@ -276,6 +319,33 @@ def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None 
     finally:
         loader.dispose()
     return result
+
+
+def _as_ros2_reads(result: YamlFile, loader) -> None:
+    """The caution of a ROS 2 parameter file that ROS 2's parser and PyYAML read apart
+    (:class:`~urdftool.description.yaml_limits.DepthLimit`'s ``lenient``), at the first place:
+    a value PyYAML cannot construct (read as ROS 2 reads it: the node loads the file, a launch
+    file loading it with PyYAML fails), an alias (rcl_yaml_param_parser refuses every one: the
+    node fails, a launch file loading it with PyYAML reads it). Whether the file loads depends
+    on what reads it: a warning, never the file's error."""
+    said = []
+    found = loader.unconstructed
+    if found:
+        line, why = found[0]
+        more = f" (and {len(found) - 1} more such values)" if len(found) > 1 else ""
+        said.append((line, (
+            f"{why}{more}: ROS 2's parameter parser reads it as written (no dates, no tag but "
+            "!!str, a number past its types as text), so the file loads as a node's parameter "
+            "file, but a launch file or tool loading it with PyYAML (yaml.safe_load) fails")))
+    if loader.aliased is not None:
+        said.append((loader.aliased, (
+            f"an alias (*name) on line {loader.aliased}: ROS 2's parameter parser refuses "
+            "every alias (\"Will not support aliasing\"), so a node given this file as its "
+            "parameter file fails to start; only a launch file loading it with PyYAML reads it")))
+    if said:
+        said.sort()
+        result.line = said[0][0]
+        result.caution = "; and ".join(text for _, text in said)
 
 
 def _error_line(error, text: str) -> int | None:

@@ -301,6 +301,16 @@ def identity(path) -> tuple | None:
     return found if isinstance(found, tuple) else None
 
 
+def owner(path) -> int | None:
+    """The user id owning the file at ``path`` (links followed), or None when it cannot be
+    looked at: whose file it is, for a file urdftool reads only when it is the user's
+    (:func:`urdftool.lint.settings.foreign`)."""
+    try:
+        return os.stat(path).st_uid
+    except (OSError, ValueError):
+        return None
+
+
 def identity_or_why(path) -> tuple | str:
     """:func:`identity` of the regular file at ``path``; else why there is none, in words: ''
     for nothing there (no entry, or a link to nothing), else what is there instead ('a

@@ -120,9 +120,10 @@ def held(option: str, value, kind: str, *, none: bool = False):
     elif kind == "path":
         if isinstance(value, (str, os.PathLike)):
             return value
-    elif kind == "seconds":
+    elif kind == "seconds":  # (an int past a double is below inf, and float() of it raised
+        # OverflowError where the budget was made)
         if not isinstance(value, bool) and isinstance(value, (int, float)) and \
-                0 <= value < math.inf:
+                0 <= value < math.inf and (isinstance(value, float) or value < 2 ** 1023):
             return value
     elif kind == "count":
         if not isinstance(value, bool) and isinstance(value, int) and value >= 0:
@@ -160,8 +161,8 @@ def _toml(value):
         yield "true" if value else "false"
     elif isinstance(value, int) and value.bit_length() > 14_000:  # past what str() writes
         yield f"a whole number of {int(value.bit_length() * math.log10(2))} digits or so"
-    elif isinstance(value, (int, float)) and math.isfinite(value):
-        yield repr(value)
+    elif isinstance(value, int) or isinstance(value, float) and math.isfinite(value):
+        yield repr(value)  # (an int past a double: math.isfinite raised OverflowError)
     elif isinstance(value, float):
         yield "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
     elif isinstance(value, str):

@@ -700,10 +700,10 @@ def _rosparam(element, when, line) -> ParamFile | None:
 # --- YAML (ROS 2) -------------------------------------------------------------------------------
 
 def _read_yaml_launch(path: Path) -> LaunchFile:
-    document = read_yaml(path, "launch file")
+    document = read_yaml(path, "launch file", parameters=False)
     launch = LaunchFile(path, document.display, "ros2-yaml")
     if document.problem:
-        launch.problem = document.problem
+        launch.problem, launch.problem_line = document.problem, document.line
         return launch
     data = document.data
     entries = data.get("launch") if isinstance(data, dict) else None

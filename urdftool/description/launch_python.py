@@ -39,6 +39,7 @@ from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Descriptio
                                          literal, unknown)
 from urdftool.records import NEW
 from urdftool.errors import described
+from urdftool.numbers import is_decimal
 
 MAX_STEPS = 200_000  # expressions and statements evaluated per file
 MAX_DEPTH = 40  # nested expressions, and calls into the file's own functions
@@ -550,8 +551,10 @@ class _Reader:
         value = self.eval(container, env, when, depth)
         if isinstance(value, dict) and isinstance(key, Value) and key.literal in value:
             return value[key.literal]
-        if isinstance(value, list) and isinstance(key, Value) and (key.literal or "").lstrip("-").isdigit():
-            index = int(key.literal)
+        literal = key.literal or "" if isinstance(key, Value) else ""
+        if isinstance(value, list) and len(literal) < 20 and \
+                is_decimal(literal.removeprefix("-")):  # ('²': int() raised ValueError)
+            index = int(literal)
             if -len(value) <= index < len(value):
                 return value[index]
         return unknown(_source(node))

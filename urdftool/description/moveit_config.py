@@ -59,7 +59,9 @@ MOVEIT_KEYS = ("controller_list", "moveit_simple_controller_manager")
 
 
 def _number(value) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
+    """Whether a value read from MoveIt's YAML is a number: not a boolean, not NaN (``.nan``
+    passed every comparison: a max_velocity of NaN was no finding, and MoveIt plans with it)."""
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and value == value
 
 
 def _tagged_number(value) -> bool:

@@ -1162,7 +1162,7 @@ def setup_assistant(package: Path) -> dict | None:
     if kind_of(marker, follow=False) != "file" or \
             [version for version, _, _ in build_tools(marker)] != [2]:
         return None
-    data = read_yaml(marker, "MoveIt Setup Assistant settings").data
+    data = read_yaml(marker, "MoveIt Setup Assistant settings", parameters=False).data
     settings = data.get("moveit_setup_assistant_config") if isinstance(data, dict) else None
     return settings if isinstance(settings, dict) else None
 

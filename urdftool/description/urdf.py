@@ -200,11 +200,14 @@ EXTENSION_VOCABULARY: dict[str, tuple[str, ...]] = {
 
 def version_problem(text: str) -> str | None:
     """Why ``text`` is no ``<robot version>`` urdfdom reads (MAJOR.MINOR, 1.0 to 1.2), or None."""
+    from urdftool.errors import shown_word
+    from urdftool.numbers import is_decimal
+
     major, dot, minor = text.strip().partition(".")
-    if not dot or not major.isdigit() or not minor.isdigit():
-        return f"version '{text}' is not of the form MAJOR.MINOR (e.g. 1.0)"
-    if not (1, 0) <= (int(major), int(minor)) <= (1, 2):
-        return f"URDF version {text} is not supported (urdfdom reads 1.0 to 1.2)"
+    if not dot or not is_decimal(major) or not is_decimal(minor):  # ('1².0': int() raised)
+        return f"version '{shown_word(text)}' is not of the form MAJOR.MINOR (e.g. 1.0)"
+    if max(len(major), len(minor)) > 9 or not (1, 0) <= (int(major), int(minor)) <= (1, 2):
+        return f"URDF version {shown_word(text)} is not supported (urdfdom reads 1.0 to 1.2)"
     return None
 
 

@@ -9,6 +9,16 @@ the data recurses into. :class:`DepthLimit` stops composing at the line where th
 nesting passes MAX_DEPTH, and refuses a composed document whose aliases make it deeper than
 MAX_DEPTH or larger than MAX_EXPANSION beyond its text (:func:`expansion_problem`), each as a
 YAML error (:class:`LimitError`) at its line: every loader built on it reads within them.
+
+It is also the one guard of constructing values: PyYAML's constructors raise Python's own
+errors for values YAML's grammar lets through (``2001-02-30`` is a timestamp to YAML 1.1 and
+no date; ``!!float junk``, ``!!bool maybe``, ``!!timestamp x``; a decimal integer past the
+digits Python converts), which no reader catches: every such error is a ConstructorError at the
+value's line (:func:`unconstructable`). A loader reading as ROS 2's parameter parser does
+(``lenient``: rcl_yaml_param_parser types a plain scalar itself, as a boolean, an integer, a
+double or else a string, reads no dates and ignores every tag but ``!!str``) reads such a
+value as its text instead and notes why in ``unconstructed``: what PyYAML cannot construct is
+then a warning of the readers that use PyYAML, not an error of the file.
 """
 
 from __future__ import annotations
@@ -18,6 +28,7 @@ import re
 import yaml
 
 from urdftool.diagnostics import LineNumbers, line_at
+from urdftool.numbers import NumberRefused, double_problem, long_integer, too_long
 
 MAX_DEPTH = 200  # [levels] of nested collections; real configuration files use about ten
 MAX_EXPANSION = 1_000_000  # [nodes + characters] aliases may add to what the text holds
@@ -42,11 +53,19 @@ def line_of(mark, text: str) -> int:
 
 class DepthLimit:
     """Mixin for a yaml Loader: collections nested deeper than MAX_DEPTH are a ComposerError;
-    an integer longer than Python converts (4,300 digits) a ConstructorError at its line, not
-    the ValueError ``int()`` raises (a traceback wherever YAML errors are caught)."""
+    a value PyYAML cannot construct (an integer longer than Python converts, a date that is
+    none, ``!!float junk``) a ConstructorError at its line, not the Python error its
+    constructor raised (a traceback wherever YAML errors are caught); with ``lenient``, read as
+    ROS 2's parameter parser reads it (:meth:`construct_object`)."""
 
     _depth = 0
     _numbers = None  # the LineNumbers of the text read, when PyYAML's lines are not its lines
+    # a ROS 2 parameter file: a value PyYAML cannot construct is read as its text, (line, why)
+    # in ``unconstructed``
+    lenient = False
+    unconstructed: list | tuple = ()
+    aliased: int | None = None  # lenient: the line of the first alias (ROS 2 refuses every one)
+    any_integer = False  # a launch file's: an integer past a double is text to its readers
 
     def file_line(self, mark) -> int:
         """The 1-based line of ``mark`` in the text this loader reads (:func:`line_of`)."""
@@ -61,6 +80,38 @@ class DepthLimit:
         if hasattr(cls, "add_constructor"):  # a loader: its own table (PyYAML copies it)
             cls.add_constructor("tag:yaml.org,2002:int", _bounded_int)
 
+    def construct_object(self, node, deep=False):
+        """PyYAML's, with what its constructors raise of Python's own (ValueError, KeyError,
+        AttributeError...) a ConstructorError at ``node`` (:func:`unconstructable`). With
+        ``lenient``, a scalar PyYAML cannot construct is its text, and a collection whose tag
+        it cannot construct the plain list or mapping, as ROS 2's parser reads them (it never
+        constructs a tag but ``!!str``); each noted in ``unconstructed``."""
+        deep_before = self.deep_construct
+        try:
+            return super().construct_object(node, deep)
+        except (ValueError, TypeError, KeyError, AttributeError, IndexError, OverflowError) as error:
+            problem = unconstructable(node, error)
+        except yaml.constructor.ConstructorError as error:
+            if not self.lenient or getattr(error, "kept", False):
+                raise
+            problem = error
+        if not self.lenient or not (isinstance(node, yaml.ScalarNode) or node.tag not in _PLAIN):
+            raise problem from None
+        self.recursive_objects.pop(node, None)  # (PyYAML's bookkeeping of the node it left)
+        self.deep_construct = deep_before
+        if isinstance(self.unconstructed, tuple):
+            self.unconstructed = []
+        self.unconstructed.append((self.file_line(node.start_mark), _said(problem)))
+        if isinstance(node, yaml.ScalarNode):
+            self.constructed_objects[node] = node.value
+            return node.value
+        node.tag = _PLAIN[type(node)]  # (an alias of it is the same node: read the same way)
+        try:
+            return self.construct_object(node, deep)
+        except yaml.constructor.ConstructorError as error:
+            error.kept = True  # (what fails as a plain collection is the file's error)
+            raise
+
     def compose_document(self):
         node = super().compose_document()
         text = getattr(self, "buffer", "")  # a loader of a string holds it whole
@@ -70,6 +121,8 @@ class DepthLimit:
         return node
 
     def compose_node(self, parent, index):
+        if self.lenient and self.aliased is None and self.check_event(yaml.events.AliasEvent):
+            self.aliased = self.file_line(self.peek_event().start_mark)
         if self._depth >= MAX_DEPTH:
             mark = self.peek_event().start_mark
             raise LimitError(
@@ -82,13 +135,55 @@ class DepthLimit:
             self._depth -= 1
 
 
+_PLAIN = {yaml.SequenceNode: "tag:yaml.org,2002:seq", yaml.MappingNode: "tag:yaml.org,2002:map"}
+_KINDS = {"int": "an integer", "float": "a float", "bool": "a boolean", "timestamp": "a date",
+          "binary": "binary (base64)", "null": "null", "str": "a string", "seq": "a list",
+          "map": "a mapping", "set": "a set", "omap": "an ordered mapping", "pairs": "pairs"}
+
+
+_COLLECTIONS = {"sequence": "a sequence", "mapping": "a mapping"}
+
+
+def unconstructable(node, error: Exception):
+    """The ConstructorError, at ``node``, of a value PyYAML's constructor of its tag raised
+    ``error`` for (a Python error, not a YAML one): what was written, what YAML 1.1 makes of it
+    (its tag) and why it cannot be that."""
+    if isinstance(error, NumberRefused):  # (its words say what it is and why)
+        return yaml.constructor.ConstructorError(None, None, str(error), node.start_mark)
+    from urdftool.errors import shown_word
+
+    tag = node.tag
+    what = _KINDS.get(tag.rsplit(":", 1)[-1], tag) if tag.startswith("tag:yaml.org,2002:") else tag
+    written = f"'{shown_word(node.value)}'" if isinstance(node, yaml.ScalarNode) else \
+        _COLLECTIONS.get(node.id, node.id)
+    why = str(error) if isinstance(error, (ValueError, OverflowError)) and str(error) else \
+        f"no {what.split(' ', 1)[-1]} YAML 1.1 knows"
+    return yaml.constructor.ConstructorError(
+        None, None, f"{written} cannot be constructed as {what} ({tag}): {why}", node.start_mark)
+
+
+def _said(error) -> str:
+    """A YAML error's words (its problem, and its context when it has one)."""
+    problem = getattr(error, "problem", None) or str(error)
+    context = getattr(error, "context", None)
+    return f"{problem} ({context})" if context else problem
+
+
 def _bounded_int(loader, node) -> int:
-    try:
-        return yaml.constructor.SafeConstructor.construct_yaml_int(loader, node)
-    except ValueError:  # past sys.get_int_max_str_digits(): its conversion is quadratic
-        raise yaml.constructor.ConstructorError(
-            None, None, f"an integer of {len(node.value):,} characters, longer than any number "
-            "a configuration holds", node.start_mark) from None
+    """PyYAML's integer, refusing a decimal longer than Python converts (its conversion is
+    quadratic; in bases 2, 8 and 16 any length is linear), and, unless the loader's
+    ``any_integer``, one past what a double holds (no parameter holds it, nothing computes
+    with it: ``float()`` of it raised OverflowError in every rule reading numbers): each a
+    :class:`~urdftool.numbers.NumberRefused` the guard makes a YAML error at its line."""
+    value = loader.construct_scalar(node)
+    bare = value.replace("_", "").lstrip("+-")
+    if not bare.startswith("0") and long_integer(bare) is not None:  # (0x, 0b, 0...: bases
+        raise too_long(len(value))  # 16, 2 and 8)
+    number = yaml.constructor.SafeConstructor.construct_yaml_int(loader, node)
+    problem = None if loader.any_integer else double_problem(number)
+    if problem is not None:
+        raise problem
+    return number
 
 
 class BoundedLoader(DepthLimit, yaml.SafeLoader):

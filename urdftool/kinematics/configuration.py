@@ -472,9 +472,9 @@ def _json_rows(data: bytes, path: str, named: str):
         raise ConfigError(f"{named} '{error.args[0]}' is given twice in one object", path) from None
     except json.JSONDecodeError as error:
         raise ConfigError(f"invalid JSON: {error.msg}", f"{path}:{error.lineno}") from None
-    except (ValueError, RecursionError):  # an integer past Python's 4,300 digits; 10^5 [[
-        raise ConfigError("invalid JSON: a number too long or lists nested too deep for "
-                          "any configuration", path) from None
+    except RecursionError:  # 10^5 [[
+        raise ConfigError("invalid JSON: lists nested too deep for any configuration",
+                          path) from None
     if not count or not listed_rows and not_object:  # ([], or one value that is no object)
         raise ConfigError(f"expected a JSON list of objects {{{named} name: value}}", path)
     if not_object:
@@ -563,7 +563,11 @@ def _json_values(data: bytes):
     json.JSONDecodeError (ValueError, RecursionError) as json.loads raises it of the whole
     text. The list's brackets, commas and white space are read here as json's scanner reads
     them (CPython's _json.c, _parse_array_unicode), its elements and any other value by it."""
-    decode = json.JSONDecoder(object_pairs_hook=_once_each).raw_decode
+    # (every number kept as written, converted to a float with the rest: an integer past
+    # Python's 4,300 digits was json's ValueError, one past a double float()'s
+    # OverflowError; as written, each is "not finite" at its row)
+    decode = json.JSONDecoder(object_pairs_hook=_once_each, parse_int=_Number,
+                              parse_float=_Number).raw_decode
     text = _Text(data)
     text.more()
     if text.text.startswith("\ufeff"):  # (a second mark: json.loads refuses it so)
@@ -607,6 +611,24 @@ def _trailing_comma() -> str | None:
 _TRAILING_COMMA = _trailing_comma()
 
 
+class _Number(str):
+    """A JSON number as written (``float`` reads it as the CSV reader reads a cell)."""
+
+    __slots__ = ()
+
+
+def _json_text(value) -> str:
+    """A JSON value as written, its numbers as they were (:class:`_Number`: ``json.dumps``
+    wrote ``[1]`` as ``["1"]``)."""
+    if isinstance(value, _Number):
+        return str(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(map(_json_text, value)) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{json.dumps(k)}: {_json_text(v)}" for k, v in value.items()) + "}"
+    return json.dumps(value)
+
+
 class _Twice(Exception):
     """A JSON object giving a key twice (its key)."""
 
@@ -627,7 +649,7 @@ def _located_floats(rows, names, path, named: str, before: int = 0) -> np.ndarra
     for number, row in enumerate(rows, start=1):
         for column, cell in enumerate(row):
             where = f"{path}: row {before + number}"
-            written = cell if isinstance(cell, str) else json.dumps(cell)  # (JSON's words)
+            written = cell if isinstance(cell, str) else _json_text(cell)  # (JSON's words)
             message = (f"value '{shown_word(written)}' for {named} "
                        f"'{shown_word(names[column])}' is not a number")
             if isinstance(cell, bool) or not isinstance(cell, (int, float, str)):
@@ -719,6 +741,10 @@ def within(generator, lower, upper, size: tuple[int, int]) -> np.ndarray:
     a span past the largest float."""
     from urdftool.numbers import MAX_COORDINATE
 
+    if math.prod(size) > np.iinfo(np.intp).max // 8:  # numpy's ValueError ("array is too
+        # big"), a traceback of --random, --samples, --seeds of 10^18, where 10^10 ran out of
+        # the memory budget: no memory holds it either
+        raise MemoryError(f"{size[0]:,} draws of {size[1]} values: past any memory")
     low = np.clip(np.minimum(lower, upper), -MAX_COORDINATE, MAX_COORDINATE)
     high = np.clip(np.maximum(lower, upper), -MAX_COORDINATE, MAX_COORDINATE)
     return generator.uniform(low, high, size=size)

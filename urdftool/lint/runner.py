@@ -277,7 +277,9 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
         before += len(indexes)
         for index, result in zip(indexes, found):
             results[index] = result
-    run = Run(results, targets.skipped, targets.notes, [plan.strict for plan in plans],
+    unread = dict.fromkeys(why for plan in plans for why in plan.skipped)  # (said once; a run
+    # with notes is never kept whole: said again on every run)
+    run = Run(results, targets.skipped, [*targets.notes, *unread], [plan.strict for plan in plans],
               errors=errors, unbuilt=targets.unbuilt)
     if cache is not None and not errors:
         run.depends = cache.put_run(paths, request, run, lambda path: by_path[path].options,

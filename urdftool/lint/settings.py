@@ -15,9 +15,11 @@ as ``--max-triangles``), ``targets`` (simulators to check portability to, as ``-
 by default). Command-line options win over the file.
 
 The settings file comes with the repository, so it is as untrusted as the robot files. It is
-looked for up to the repository root (the nearest folder holding ``.git``) and no further, read
-only when it is a regular file of at most 1 MiB nesting at most :data:`MAX_DEPTH` levels, and
-every key goes through :func:`_validated`, so that a key added later cannot skip it:
+looked for up to the repository root (the nearest folder holding ``.git``) and no further (in
+no repository, up to ``/``, where a file another user owns is not read, and said:
+:func:`foreign`), read only when it is a regular file of at most 1 MiB nesting at most
+:data:`MAX_DEPTH` levels, and every key goes through :func:`_validated`, so that a key added
+later cannot skip it:
 
 - no string anywhere in it (a key, a glob, a xacro argument's value, a package folder, a
   companion) names a path outside the repository: absolute, ``~``, a drive, a ``file:`` URI,
@@ -52,6 +54,7 @@ from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimit
 from urdftool.description.record import remembered
 from urdftool.description.run_memo import per_run
 from urdftool.lint.options import CheckOptions, Selection
+from urdftool.numbers import too_long
 from urdftool.records import Frozen, NEW, Record, replace
 
 MAX_SETTINGS_SIZE = 1024 * 1024  # [bytes]
@@ -82,10 +85,13 @@ class Settings(Record):
     # each per-file table's globs compiled once (fnmatch's cache holds 32,768: a table of more
     # was compiled again for every file, seconds each)
     _globs: dict
+    # the settings files found and not read on the way (another user's, in no repository:
+    # :func:`foreign`), each said in words
+    skipped: tuple
 
     __slots__ = ("path", "select", "ignore", "per_file_ignores", "per_file_args", "packages",
                  "companions", "strict", "max_file_size", "max_memory", "timeout", "max_triangles",
-                 "targets", "notes", "_globs")
+                 "targets", "notes", "_globs", "skipped")
     _compared = ("path", "select", "ignore", "per_file_ignores", "per_file_args", "packages",
                  "companions", "strict", "max_file_size", "max_memory", "timeout", "max_triangles",
                  "targets", "notes")
@@ -99,7 +105,8 @@ class Settings(Record):
                  companions: dict[str, Path] = NEW, strict: bool = False,
                  max_file_size: int | None = None, max_memory: str | None = None,
                  timeout: float | None = None, max_triangles: int | None = None,
-                 targets: list[str] = NEW, notes: bool = False, _globs: dict = NEW) -> None:
+                 targets: list[str] = NEW, notes: bool = False, _globs: dict = NEW,
+                 skipped: tuple = ()) -> None:
         self.path = path
         self.select = [] if select is NEW else select
         self.ignore = [] if ignore is NEW else ignore
@@ -115,6 +122,7 @@ class Settings(Record):
         self.targets = [] if targets is NEW else targets
         self.notes = notes
         self._globs = {} if _globs is NEW else _globs
+        self.skipped = skipped
 
     def ignores_for(self, file: str) -> list[str]:
         """Codes ignored for one file by ``per-file-ignores`` globs (relative to the config)."""
@@ -164,20 +172,45 @@ def _settings_in(folder: Path) -> Settings:
     root = repository_root(folder)
     if root is not None:
         chain = chain[:chain.index(root) + 1]
+    skipped = []
     for candidate in chain:
         for name in ("urdftool.toml", "pyproject.toml"):
             file = candidate / name
             known = identity_or_why(file)
             if isinstance(known, tuple):
+                why = None if root is not None else foreign(file)
+                if why is not None:
+                    skipped.append(why)
+                    continue
                 found = _settings_file(file, known)
                 if found is not None:
-                    return found
+                    return replace(found, skipped=tuple(skipped)) if skipped else found
             elif known:  # a name for settings that holds none: the settings meant are not
                 # known, and a check with the defaults in their place would pass in silence
                 raise SettingsError(f"settings file '{file}' {_what_is_there(known)}: the "
                                     "settings it names cannot be read; make it a file, or "
                                     "remove it")
-    return Settings()
+    return Settings(skipped=tuple(skipped))
+
+
+def foreign(file: Path) -> str | None:
+    """Why the settings file ``file``, found above a folder that is in no repository, is not
+    read: it belongs to another user (not this process's, nor root's), as git reads no
+    repository another user owns (``safe.directory``): a ``pyproject.toml`` another local user
+    leaves in ``/tmp`` would select and ignore the rules of a check of an archive unpacked
+    below it. None for a file that may be read. The one decision, which the check, the
+    language server and the pytest plugin each say (:attr:`Settings.skipped`)."""
+    from urdftool.description.files import owner as owner_of
+
+    uid = getattr(os, "geteuid", None)
+    if uid is None:  # (no owners to compare)
+        return None
+    owner = owner_of(file)
+    if owner is None or owner in (uid(), 0):
+        return None
+    return (f"settings file '{file}' not read: it belongs to another user (uid {owner}) and "
+            "lies in no repository (as git reads no repository another user owns); give it "
+            "with --config to use it")
 
 
 def _what_is_there(why: str) -> str:
@@ -253,10 +286,30 @@ def _read(path: Path, holding: str | None = None) -> dict:
     except tomllib.TOMLDecodeError as error:
         raise SettingsError(f"cannot read settings in {path}: {error}") from None
     except ValueError:  # tomllib's int() of a number past Python's 4,300 digits
-        raise SettingsError(f"cannot read settings in {path}: a number too long for any "
-                            "setting") from None
+        found = _long_number(text)
+        where = f"{path}:{line_at(text, found.start())}" if found else f"{path}"
+        raise SettingsError(f"cannot read settings in {where}: " + (
+            str(too_long(len(found.group()))) if found else "a number too long for any "
+            "setting")) from None
     except RecursionError:  # what too_deep() missed
         raise SettingsError(f"{path}: settings nest too deeply; not read") from None
+
+
+def _long_number(text: str):
+    """Where tomllib's ValueError is: the first run of digits longer than Python converts
+    that is not inside a string on its line (an even number of quotes of each kind before it
+    there), or None."""
+    from urdftool.diagnostics import lines_of
+    from urdftool.numbers import long_integers
+
+    lines = None
+    for found in long_integers(text):
+        lines = lines or lines_of(text)
+        line = lines[line_at(text, found.start()) - 1]
+        before = line[:line.find(found.group()[:40])]
+        if before.count('"') % 2 == 0 and before.count("'") % 2 == 0:
+            return found
+    return None
 
 
 def may_hold(text: str, table: str, key: str) -> bool:
@@ -800,16 +853,18 @@ class FileSettings(Frozen):
     strict: bool
     memory: int | None
     timeout: float | None
+    skipped: tuple  # the settings files not read on the way (:func:`foreign`), in words
 
-    __slots__ = ("options", "strict", "memory", "timeout")
+    __slots__ = ("options", "strict", "memory", "timeout", "skipped")
 
     def __init__(self, options: CheckOptions, strict: bool, memory: int | None,
-                 timeout: float | None = DEFAULT_TIMEOUT) -> None:
+                 timeout: float | None = DEFAULT_TIMEOUT, skipped: tuple = ()) -> None:
         set_field = object.__setattr__
         set_field(self, "options", options)
         set_field(self, "strict", strict)
         set_field(self, "memory", memory)
         set_field(self, "timeout", timeout)
+        set_field(self, "skipped", skipped)
 
 
 def _applying(path: str, request: CheckRequest) -> Settings:
@@ -867,7 +922,8 @@ def for_file(path: str, request: CheckRequest) -> FileSettings:
         raise SettingsError(f"max_memory must be a size such as \"2G\", \"512M\" or 0 "
                             f"(no limit), not {shown(memory)}") from None
     timeout = _given(request.timeout, settings.timeout, DEFAULT_TIMEOUT)
-    return FileSettings(options, request.strict or settings.strict, limit, timeout or None)
+    return FileSettings(options, request.strict or settings.strict, limit, timeout or None,
+                        settings.skipped)
 
 
 def _given(requested, setting, default):

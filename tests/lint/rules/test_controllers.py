@@ -113,6 +113,25 @@ def test_yaml_alias_bomb_is_a_located_error(tmp_path):
     assert found == [("c.yaml", 6, "U601")]
 
 
+@pytest.mark.parametrize("layout, severity", [
+    ("humanoid:\n  c:\n    type: a/B\n    joints: [head_joint]\n    rate: VALUE\n", Severity.ERROR),
+    ("controller_manager:\n  ros__parameters:\n    c: {type: a/B}\nc:\n  ros__parameters:\n"
+     "    joints: [head_joint]\n    rate: VALUE\n", Severity.WARNING),
+])
+@pytest.mark.parametrize("value", ["2001-02-30", "!!float junk", "!!bool maybe", "1" * 400])
+def test_a_value_pyyaml_cannot_construct_is_u601_an_error_where_every_reader_fails(tmp_path, layout, severity, value):
+    """ROS 1 (rosparam) reads a controllers file with PyYAML, which cannot construct these: an
+    error of the file at the value's line. ROS 2's parameter parser reads each as written (no
+    dates, no tags): a warning naming the readers that fail (a launch file loading it with
+    PyYAML). Each was 61 crashed rules (U900) before."""
+    robot = HEAD_ROBOT.format(body="")
+    found, findings = check_folder(tmp_path, {"robot.urdf": robot,
+                                              "config/c.yaml": layout.replace("VALUE", value)})
+    line = layout.count("\n")
+    assert [(f.code, f.line, f.severity) for f in findings if f.code in ("U601", "U900")] == [
+        ("U601", line, severity)]
+
+
 # --- the example robots, broken in a temporary copy ------------------------------------------
 
 @pytest.mark.parametrize("file, old, new, code, message", [

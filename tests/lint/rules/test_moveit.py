@@ -95,6 +95,28 @@ def test_broken_moveit_yaml_is_located_inside_the_file(tmp_path):
     assert found == [("kinematics.yaml", 3, "U812"), ("moveit_controllers.yaml", 2, "U812")]
 
 
+def test_a_kinematics_yaml_that_does_not_read_is_said_not_skipped(tmp_path):
+    """A kinematics.yaml in a folder companions are looked for in, away from the SRDF, was
+    taken only when it read: one MoveIt cannot read was passed over in silence (no finding,
+    and no solver checked); beside the SRDF it was U812."""
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
+             "config/kinematics.yaml": f"head:\n  kinematics_solver: {KDL}\n"
+                                                       "  kinematics_solver_timeout: 2001-02-30\n"}
+    found, findings = check_folder(tmp_path, files, select=("U81",))
+    assert found == [("kinematics.yaml", 3, "U812")] and "day is out of range" in findings[0].message
+
+
+@pytest.mark.parametrize("key, flag", [("max_velocity", "has_velocity_limits"),
+                                       ("max_acceleration", "has_acceleration_limits")])
+def test_a_moveit_limit_of_nan_is_no_number(tmp_path, key, flag):
+    """``.nan`` passed every comparison of a limit (above 0, at most the URDF's): no finding,
+    and MoveIt plans with a NaN limit."""
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
+             "joint_limits.yaml": f"joint_limits:\n  head_joint:\n    {flag}: true\n    {key}: .nan\n"}
+    found, findings = check_folder(tmp_path, files, select=("U81",))
+    assert found == [("joint_limits.yaml", 4, "U812")] and "'nan' must be a number" in findings[0].message
+
+
 def test_moveit_files_are_not_read_through_a_link_out_of_the_srdf_folder(tmp_path):
     outside = tmp_path / "outside"
     outside.mkdir()

@@ -98,6 +98,33 @@ def test_manager_update_rate_is_an_integer(tmp_path):
     assert found == [("c.yaml", 3, "U630")] and findings[0].severity == Severity.ERROR
 
 
+@pytest.mark.parametrize("rate, said", [
+    ("9223372036854775808", "9223372036854775808 is past int64"),
+    ("-9223372036854775809", "-9223372036854775809 is past int64"),
+    ("1" + "0" * 300, "(301 characters) is past int64"),
+])
+def test_an_integer_past_int64_is_a_double_to_ros_2_and_said(tmp_path, rate, said):
+    """rcl_yaml_param_parser reads an integer with strtoll, which refuses one past int64
+    (ERANGE), then with strtod: a double, which the controller manager refuses for its
+    integer update_rate. PyYAML's reading held a Python int of any size: nothing was said."""
+    found, findings = _check(tmp_path, _jtc("").replace("update_rate: 100", f"update_rate: {rate}"),
+                             select=("U630",))
+    assert found == [("c.yaml", 3, "U630")]
+    assert "must be an integer, not a double (" in findings[0].message and said in findings[0].message
+    assert "which ROS 2 reads as a double); give it an integer" in findings[0].message
+    found, _ = _check(tmp_path, _jtc("").replace("update_rate: 100", "update_rate: 9223372036854775807"),
+                      select=("U630",))
+    assert found == []
+
+
+def test_a_word_for_a_number_is_not_said_to_be_quoted(tmp_path):
+    """"write update_rate: junk without quotes" was said of a word written without quotes:
+    only a string that is a number written plain was one in quotes."""
+    found, findings = _check(tmp_path, _jtc("").replace("update_rate: 100", "update_rate: junk"),
+                             select=("U630",))
+    assert found == [("c.yaml", 3, "U630")] and "give it an integer" in findings[0].message
+
+
 def test_numbers_ros_2_reads_but_pyyaml_does_not_are_not_called_strings(tmp_path):
     found, _ = _check(tmp_path, _jtc("""\
         head_controller:

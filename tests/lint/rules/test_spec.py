@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from conftest import ROBOTS
-from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder
+from crossfile_helpers import HEAD_ROBOT, broken_copy, case_messages, check_folder, line_of
 
 ROBOT = HEAD_ROBOT.format(body="")
 
@@ -60,6 +60,18 @@ def test_humanoid_duplicate_servo_id_and_missing_joint(tmp_path):
     assert sorted((f.code, f.line, f.file.endswith(("parts.xacro", "joint_limits.yaml")))
                   for f in findings) == [("U702", spec_line, True), ("U704", 13, True),
                                          ("U705", spec_line, True)]
+
+
+@pytest.mark.parametrize("value", ["2001-02-30", "1" * 400])
+def test_a_spec_value_that_does_not_read_is_the_specs_one_finding(tmp_path, value):
+    """An effort PyYAML cannot construct: a date that is none crashed every spec rule (U900:
+    ValueError), an integer past a double each of them (math.isfinite's OverflowError);
+    then the spec beside the SRDF was also read as MoveIt's joint_limits.yaml and said again
+    (U812). Once, U701, at its line."""
+    findings = broken_copy(tmp_path, "humanoid", "joint_limits.yaml", "effort: 2.5, velocity: 5.76}\n  head_tilt",
+                           f"effort: {value}, velocity: 5.76}}\n  head_tilt")
+    line = line_of(ROBOTS / "humanoid/joint_limits.yaml", "head_pan:")
+    assert [(f.code, f.line) for f in findings] == [("U701", line)]
 
 
 WHEELED = HEAD_ROBOT.format(body='<link name="wheel"/><joint name="wheel_joint" type="continuous">'

@@ -114,6 +114,13 @@ def malformed_controllers_yaml(robot):
     ``controller_list``/``controller_names``; a name MoveIt's ``controller_names`` lists needs
     its own mapping (``type``, ``action_ns``, ``joints``) beside the list.
 
+    A value PyYAML cannot construct (``2001-02-30``, a date to YAML 1.1 and no date; ``!!float
+    junk``; ``<<: 5``) fails every loader of a ROS 1 file (rosparam reads with PyYAML); in a ROS
+    2 parameter file it is a warning: ROS 2's parser reads it as written (no dates, no tag but
+    ``!!str``), while a launch file or tool loading the file with PyYAML fails. An alias
+    (``*defaults``, ``<<: *defaults``) in a ROS 2 parameter file is a warning too: ROS 2's parser
+    refuses every alias, PyYAML reads it.
+
     Bad: ``joints: [head_pan, head_tilt`` (unclosed list)
     Good: ``joints: [head_pan, head_tilt]``
     """
@@ -121,6 +128,8 @@ def malformed_controllers_yaml(robot):
     for file in companions(robot).controllers:
         if file.problem:
             yield file.at(file.line), file.problem
+        elif file.caution:  # read as ROS 2's parser reads it; PyYAML cannot
+            yield file.at(file.line), Conditional(file.caution)
     for read in controller_files(robot):
         file = read.file
         for controller in read.controllers:

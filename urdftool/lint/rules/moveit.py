@@ -79,7 +79,9 @@ def malformed_moveit_config(robot):
     ``controller_names: [arm_controller]`` without an ``arm_controller:`` block
     Good: ``kinematics_solver_timeout: 0.005``; ``max_velocity: 1.0``
     """
+    read = []
     for file, _, problems in (_kinematics(robot), _limits(robot)):
+        read.append(file)
         for line, message in problems:
             yield file.at(line), message
     beside_srdf = companions(robot).moveit_controllers
@@ -89,6 +91,9 @@ def malformed_moveit_config(robot):
     for file in beside_srdf:
         if file.problem:
             yield file.at(file.line), file.problem
+    for file in (*read, *beside_srdf):
+        if file is not None and file.problem is None and file.caution:  # (a ROS 2 parameter
+            yield file.at(file.line), Conditional(file.caution)  # file PyYAML cannot read)
 
 
 @rule("U813", "kinematics-unknown-group", Severity.ERROR)

@@ -10,11 +10,13 @@ distribution that has the class: a parameter renamed in a later one (``i_clamp``
 from __future__ import annotations
 
 import functools
+import math
+import re
 
 from urdftool.description import controller_parameters as schema
 from urdftool.description.controllers import Controller, controller_files, controllers
 from urdftool.description.documents import YamlMap
-from urdftool.errors import available
+from urdftool.errors import available, shown_word
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.lint.rules.controllers import if_started, label
 
@@ -144,14 +146,30 @@ def _write(name: str, value, parameter) -> str:
     expected = parameter.type
     short = name.rsplit(".", 1)[-1]
     if expected.endswith("_array") and not isinstance(value, list):
-        return f"write {short}: [{value}]"
+        return f"write {short}: [{shown_word(str(value))}]"
     if expected == "double" and isinstance(value, int) and not isinstance(value, bool):
         return f"write {short}: {float(value)!r}"
     if expected == "double_array" and isinstance(value, list):
         return f"write {short}: {_doubles(value)}"
-    if expected in ("int", "double", "bool") and isinstance(value, str):
+    if isinstance(value, str) and _plain_is(value.strip(), expected):
         return f"write {short}: {value.strip()} without quotes"
     return f"give it {schema._shown(expected.split('_fixed_')[0])}"
+
+
+def _plain_is(text: str, expected: str) -> bool:
+    """Whether ``text`` written plain (without quotes) is a value of the type ``expected``
+    (``int``, ``double``, ``bool``) to the readers: only then is a string that holds it one
+    written in quotes (``update_rate: "50"``); a word (``junk``) is no number however written."""
+    if expected == "bool":
+        return text.lower() in ("true", "false", "yes", "no", "on", "off")
+    if expected == "int":
+        return re.fullmatch(r"[-+]?[0-9]{1,18}", text) is not None
+    if expected == "double":
+        try:
+            return math.isfinite(float(text))
+        except ValueError:
+            return False
+    return False
 
 
 # --- U631 ------------------------------------------------------------------------------------
