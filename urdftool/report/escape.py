@@ -20,7 +20,10 @@ rich console markup           :func:`markup`      :func:`text`, and ``[bold]``-s
 GitHub workflow commands      :func:`workflow`    a line break ending the command, ``%``, and in
                                                   a property ``:`` and ``,``
 Markdown (pull-request        :func:`markdown`    headings, images, links, raw HTML, mentions,
-comments, job summaries)                          table cells: the text is a code span
+comments, job summaries;                          table cells: the text is a code span
+rdjson's messages, which
+reviewdog posts as review
+comments)
 XML (JUnit; lxml writes it)   :func:`xml`         characters XML 1.0 cannot hold; line breaks
                                                   that would start a line in a CI page; on a
                               :func:`write_xml`   stream whose encoding lacks a character, a
@@ -38,8 +41,9 @@ YAML documents                :func:`yaml_text`   a scalar folded or broken onto
 SARIF message text           :func:`sarif_text`  SARIF's own grammar inside the JSON string:
                                                   ``[text](0)`` an embedded link, ``{0}`` a
                                                   placeholder, ``\\[`` a bracket
-JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact, the
-rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``); a name's
+JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact (but
+rdjson, json-lines, LSP)      ``json_output``     the message texts above), the bytes are
+                                                  ASCII (``\\uXXXX``); a name's
                               (``paired``: LSP)   undecodable byte (a lone surrogate) is U+FFFD
                                                   and its two hex digits, one to one
                                                   (``json_output.named``; SARIF's URIs ``%FF``)
