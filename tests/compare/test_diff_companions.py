@@ -132,3 +132,20 @@ def test_a_file_neither_side_parses_is_the_same_file_when_its_bytes_are(tmp_path
                  side(tmp_path / "d", controllers=broken + "# a comment\n"))
     assert [(i.element, i.name) for i in other.not_compared] == [
         ("controllers", "config/controllers.yaml")]
+
+
+@pytest.mark.parametrize("which", ("old", "new"))
+def test_a_companion_in_a_folder_that_is_a_link_is_not_compared(tmp_path, which):
+    """The config folder of a side a link to a folder holding the same file (outside the
+    repository): discovery never enters it, and the file was 'removed' (exit 1)."""
+    import shutil
+
+    sides = {name: tmp_path / name for name in ("old", "new")}
+    robots = {name: side(folder) for name, folder in sides.items()}
+    shutil.move(sides[which] / "config", tmp_path / "elsewhere")
+    (sides[which] / "config").symlink_to(tmp_path / "elsewhere")
+    robots[which] = load_text(sides[which], ARM, "arm.urdf")
+    result = diff(robots["old"], robots["new"])
+    assert [(i.element, i.name, bool(getattr(i, which))) for i in result.not_compared] == [
+        ("controllers", "config/controllers.yaml", True)]
+    assert result.companions == [] and "elsewhere" not in repr(result.not_compared)

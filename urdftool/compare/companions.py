@@ -14,6 +14,7 @@ both sides hold the same bytes: neither equal nor changed can be claimed of what
 from __future__ import annotations
 
 import os
+from pathlib import Path
 
 from urdftool.compare.structure import Change, NotCompared, Renames, same_value
 
@@ -86,10 +87,16 @@ def _unread_by_place(found, base) -> dict:
 
 def _paired(one: dict, other: dict, other_unread: dict) -> None:
     """Where ``one`` has a file and ``other`` none, but ``other`` has an unreadable one of
-    that place: that one, so that the place is not compared rather than removed or added."""
+    that place, or a folder on its way that is not entered: that one, so that the place is
+    not compared rather than removed or added."""
     for place in one:
-        if place not in other and place in other_unread:
-            other[place] = other_unread[place]
+        if place in other:
+            continue
+        folders = [str(parent) for parent in Path(place).parents if str(parent) != "."]
+        unread = next((other_unread[name] for name in [place, *folders] if name in other_unread),
+                      None)
+        if unread is not None:
+            other[place] = unread
 
 
 def _same_bytes(old, new) -> bool:

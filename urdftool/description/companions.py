@@ -86,7 +86,8 @@ class Companions(Record):
 
     used: path -> why it is this robot's; unused: path found but not this robot's -> why;
     unread: path of the name of a companion found where no file could be read (a folder, a
-    FIFO, a link to another folder) -> why (``diff`` says so of the place, not "removed")
+    FIFO, a link to another folder), and each folder companions are looked for in that is a
+    link -> why (``diff`` says so of the place, not "removed")
     """
 
     controllers: list[YamlFile]
@@ -145,6 +146,9 @@ def _discover(robot) -> Companions:
     named = robot.companion_paths
     found = Companions()
     folders = search_folders(Path(robot.path)) if robot.path != "-" else []
+    if robot.path != "-":
+        for folder in _linked_folders(Path(os.path.abspath(robot.path))):
+            found.unread[folder] = "a folder that is a symbolic link: not entered"
     owner = _Owner(robot, folders)
     if robot.path != "-":
         found.launch = launched.runtime(robot).describe()
@@ -314,6 +318,14 @@ def search_folders(robot_path: Path) -> list[Path]:
 
 @per_run
 def _search_folders(robot_path: Path) -> tuple[Path, ...]:
+    root, named = _named_folders(robot_path)
+    return tuple(folder for folder in named
+                 if kind_of(folder, follow=False) == "folder" and inside(folder, root))
+
+
+def _named_folders(robot_path: Path) -> tuple[Path, tuple[Path, ...]]:
+    """(the robot's repository, the folders its companions are looked for in, each once, as
+    the module doc names them, whatever is there)."""
     base = robot_path.parent
     root = containment_root(base)
     folders = [base, base / "config"]
@@ -324,11 +336,16 @@ def _search_folders(robot_path: Path) -> tuple[Path, ...]:
     stems = {home.name.removesuffix("_description"), robot_path.name.split(".")[0]}
     for stem in sorted(stems):
         folders.append(home.parent / f"{stem}_moveit_config" / "config")
-    unique = []
-    for folder in dict.fromkeys(folders):
-        if kind_of(folder, follow=False) == "folder" and inside(folder, root):
-            unique.append(folder)
-    return tuple(unique)
+    return root, tuple(dict.fromkeys(folders))
+
+
+@per_run
+def _linked_folders(robot_path: Path) -> tuple[Path, ...]:
+    """The folders companions are looked for in that are symbolic links: not entered, wherever
+    they lead (:func:`_candidates` does not follow a link to another folder either)."""
+    root, named = _named_folders(robot_path)
+    return tuple(folder for folder in named
+                 if kind_of(folder, follow=False) == "link" and inside(folder.parent, root))
 
 
 def _package(base: Path, root: Path) -> Path | None:
