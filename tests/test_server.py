@@ -5,6 +5,7 @@ the suppression quick fix; a check that raises does not stop the server."""
 from __future__ import annotations
 
 import asyncio
+import re
 import shutil
 import sys
 import textwrap
@@ -1121,3 +1122,29 @@ def test_hover_and_code_actions_on_a_document_never_opened_answer_nothing(offlin
         context=types.CodeActionContext(diagnostics=[diagnostic]))) is None
     assert server.hover(types.HoverParams(text_document=types.TextDocumentIdentifier(uri=uri),
                                           position=types.Position(0, 0))) is None
+
+
+# VS Code's link in a notification (vs/base/common/linkedText.ts), opened with allowCommands
+_VSCODE_LINK = re.compile(r"\[([^\]]+)\]\(((?:https?://|command:|file:)[^)\s]+)"
+                          r"(?: ([\"'])(.+?)(\3))?\)", re.I)
+
+
+def test_a_notification_holds_no_link_an_editor_would_run(offline_server, tmp_path,
+                                                          monkeypatch):
+    """A check that cannot run is a notification (``window/showMessage``) naming the robot and
+    why; VS Code renders ``[label](command:ID)`` in a notification as a link that runs the
+    command when clicked. A settings key of the repository (``"[Open](command:...)" = 1``)
+    or a file so named put one there; a line break and ESC reached clients that print it."""
+    from urdftool.server import Outcome
+
+    server, _ = offline_server
+    shown = []
+    monkeypatch.setattr(server, "window_show_message", lambda params: shown.append(params))
+    name = "[Run](command:workbench.action.terminal.new)\n\x1b[2J"
+    robot = str(tmp_path / f"{name}.urdf")
+    server._publish(Outcome(robot, None, error=f"urdftool.toml: unknown setting(s) {name}",
+                            user_error=True), ticket=1)
+    [params] = shown
+    assert not _VSCODE_LINK.search(params.message), params.message
+    assert "\n" not in params.message and "\x1b" not in params.message
+    assert "[Run] (command:workbench.action.terminal.new)" in params.message

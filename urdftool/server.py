@@ -669,9 +669,12 @@ class UrdftoolServer(LanguageServer):
             self._log(types.MessageType.Error, f"{what} {shown}: {outcome.error}")
             headline = outcome.error.strip().splitlines()[-1] if outcome.error.strip() else ""
             if headline not in self.errors_shown:
+                from urdftool.report.escape import notification
+
                 self.errors_shown.add(headline)
                 self.window_show_message(types.ShowMessageParams(
-                    type=types.MessageType.Error, message=f"urdftool: {what} {shown}: {headline}"))
+                    type=types.MessageType.Error,
+                    message=notification(f"urdftool: {what} {shown}: {headline}")))
             return
         for why in outcome.unread:  # once each, as the check says it on every run
             if why not in self.unread_shown:

@@ -492,3 +492,77 @@ def test_urdfdoms_refusal_in_a_file_drake_reads_is_still_refused(words, tmp_path
     path.write_text(path.read_text().replace('<axis xyz="1 0 0"/>', '<axis xyz="1 0 0"/><limit '
                                              'lower="0" upper="1" effort="1" velocity="1"/>'))
     assert run_cli(command, path, *rest).exit_code == 0
+
+
+SECRET = "URDFTOOL_SECRET_29"
+SECRET_ROBOT = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base"><visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>
+    <inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/>
+    </inertial></link>
+  <link name="{tip}"><visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>
+    <inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/>
+    </inertial></link>
+  <joint name="j" type="revolute"><parent link="base"/><child link="{tip}"/><axis xyz="0 0 1"/>
+    <origin xyz="0 0 0.5"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def _every_command_on(robot, old, out):
+    """(command, argv) for every command of the app that reads a robot, its required options
+    filled (the tip is 'tip', the name the safe mode gives it)."""
+    from tests.fuzz import forge
+
+    required = {"--base": "base", "--tip": "tip", "--output": str(out / "x.svg")}
+    runs = []
+    for name in forge.commands():
+        if name in forge.NO_ROBOT:
+            continue
+        fill = [word for option, param in forge.command_options(name).items()
+                if getattr(param, "required", False) and option.startswith("-")
+                for word in (option, required[option])]
+        also = {"ik": ["--xyz", "0", "0", "0.5"], "crosscheck": ["--loader", "pinocchio"],
+                "workspace": ["--samples", "5"], "dynamics": ["--samples", "2"],
+                }.get(name, [])
+        runs.append((name, [name, *([old, robot] if name == "diff" else [robot]), *fill, *also]))
+    return runs
+
+
+@pytest.mark.parametrize("written", ["$(optenv URDFTOOL_SECRET_29 tip)",
+                                     "$(env URDFTOOL_SECRET_29)"])
+def test_every_command_under_ci_reads_no_environment_variable_a_robot_names(
+        written, tmp_path, monkeypatch, analysis_imported):
+    """Under ``CI`` every command takes check's safe mode (``lint.settings.env_allowed``):
+    ``crosscheck`` loaded with the full mode, and its report named the link
+    ``$(optenv URDFTOOL_SECRET_29 tip)`` made from the job's secret. Each command of the app's
+    table runs on a robot naming the variable, under ``CI=1`` and (the control: the test can
+    fail) without it: the variable is read, and its value printed, only without."""
+    from typer.testing import CliRunner
+
+    from conftest import one_piece_here
+    from urdftool.cli import app
+    from urdftool.description import files
+
+    (tmp_path / ".git").mkdir()
+    robot = tmp_path / "r.urdf.xacro"
+    robot.write_text(SECRET_ROBOT.format(tip=written))
+    old = tmp_path / "old.urdf.xacro"
+    old.write_text(SECRET_ROBOT.format(tip="tip").replace('xyz="0 0 0.5"', 'xyz="0 0 0.4"'))
+    read: list[str] = []
+    reader = files.environ
+    monkeypatch.setattr(files, "environ", lambda name, variables=None: (
+        read.append(name) if variables is None else None, reader(name, variables))[1])
+    one_piece_here(monkeypatch)
+    found = []
+    for ci in ("1", ""):
+        for name, argv in _every_command_on(str(robot), str(old), tmp_path):
+            read.clear()
+            result = CliRunner().invoke(app, argv, env={
+                "COLUMNS": "120", "NO_COLOR": "1", "TERM": "dumb", "GITHUB_ACTIONS": "",
+                "CI": ci, SECRET: "s3cr3t-value"})
+            shown = result.stdout + result.stderr
+            if ci and (SECRET in read or "s3cr3t-value" in shown):
+                found.append(f"{name} under CI read {SECRET}: {shown[-300:]}")
+            if not ci and SECRET not in read:  # the control
+                found.append(f"{name} without CI never read {SECRET}: {shown[-300:]}")
+    assert found == [], "\n".join(found)

@@ -122,6 +122,34 @@ def test_chain_splits_at_the_colon_between_two_links(run_cli, pair, tmp_path):
     assert "did you mean 'arm:hand'?" in result.output
 
 
+@pytest.mark.parametrize("output_format", ("text", "json", "markdown"))
+def test_a_companion_a_side_cannot_read_is_said_not_compared_and_exits_2(run_cli, pair, tmp_path,
+                                                                         output_format):
+    # diff's exit statuses are diff(1)'s: 0 the same, 1 different, 2 trouble; a controller
+    # YAML beside the new side that is a folder was "removed" (exit 1), one of invalid UTF-8
+    # on both sides "equivalent" (exit 0)
+    old, new = (tmp_path / side / "arm.urdf" for side in ("old", "new"))
+    for robot, changed in ((old, pair[0]), (new, pair[0])):
+        (robot.parent / "config").mkdir(parents=True)
+        robot.write_text(changed.read_text())
+    (old.parent / "config" / "controllers.yaml").write_bytes(b"arm:\n  type: a/B\n")
+    (new.parent / "config" / "controllers.yaml").mkdir()
+    (old.parent / "config" / "ros_controllers.yaml").write_bytes(b"arm: \xff\n")
+    (new.parent / "config" / "ros_controllers.yaml").write_bytes(b"arm: \xfe\n")
+    result = run_cli("diff", old, new, "-f", output_format)
+    assert result.exit_code == 2, result.output
+    if output_format == "json":
+        data = json.loads(result.output)
+        assert data["equivalent"] is False and data["changes"] == []
+        assert [(i["name"], bool(i["old"]), bool(i["new"])) for i in data["not_compared"]] == [
+            ("config/controllers.yaml", False, True), ("config/ros_controllers.yaml", True, True)]
+    else:
+        assert "equivalent" not in result.output and "removed" not in result.output
+        quote = "`" if output_format == "markdown" else "'"
+        for place in ("config/controllers.yaml", "config/ros_controllers.yaml"):
+            assert f"not compared: controllers {quote}{place}{quote}" in result.output
+
+
 def test_a_side_that_does_not_load_exits_1_located(run_cli, pair, tmp_path):
     broken = tmp_path / "broken.urdf"
     broken.write_text("<robot name='x'><link name='a'>\n")

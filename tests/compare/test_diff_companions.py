@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
+import pytest
+
 from conftest import load_text
 from compare.test_diff import ARM  # tests/ is on the path: the arm of the diff tests
 from urdftool.compare.diff import DiffOptions, diff
@@ -79,3 +83,69 @@ def test_a_nan_in_the_controller_yaml_compared_with_itself_is_no_change(tmp_path
         "joints: [shoulder, elbow]", "joints: [shoulder, elbow]\n    gains: [.nan, 1]")
     result = diff(side(tmp_path / "old", controllers=nan), side(tmp_path / "new", controllers=nan))
     assert changes(result) == set()
+
+
+def _unreadable(path, kind, outside):
+    """Replace the file at ``path`` by something no side can compare: ``kind`` names it."""
+    import os
+
+    path.unlink()
+    if kind == "fifo":
+        os.mkfifo(path)
+    elif kind == "folder":
+        path.mkdir()
+    elif kind == "link out":  # (to a file of the right kind, outside the repository)
+        outside.write_text(path.suffix == ".srdf" and SRDF or CONTROLLERS)
+        path.symlink_to(outside)
+    elif kind == "invalid UTF-8":
+        path.write_bytes(b"arm: \xff\xfe\n" if path.suffix == ".yaml" else b"<robot>\xff")
+    else:  # "not parsed": well-formed on neither reader
+        path.write_text("arm: [" if path.suffix == ".yaml" else "<robot name='arm'>")
+
+
+KINDS = ("fifo", "folder", "link out", "invalid UTF-8", "not parsed")
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("which", ("old", "new"))
+@pytest.mark.parametrize("place", ("arm.srdf", "config/controllers.yaml"))
+def test_a_companion_one_side_cannot_read_is_not_compared_not_removed_or_equal(tmp_path, kind,
+                                                                            which, place):
+    sides = {name: tmp_path / name for name in ("old", "new")}
+    robots = {name: side(folder) for name, folder in sides.items()}
+    _unreadable(sides[which] / place, kind, tmp_path / f"outside{Path(place).suffix}")
+    robots[which] = load_text(sides[which], ARM, "arm.urdf")  # (its companions found anew)
+    result = diff(robots["old"], robots["new"])
+    [item] = result.not_compared
+    assert (item.element, item.name) == (("srdf", "arm.srdf") if place == "arm.srdf" else
+                                         ("controllers", place))
+    assert getattr(item, which) and getattr(item, "new" if which == "old" else "old") is None
+    assert result.companions == [] and not result.equivalent
+    assert str(tmp_path / "outside") not in repr(item)  # (a link leading out: never where)
+
+
+def test_a_file_neither_side_parses_is_the_same_file_when_its_bytes_are(tmp_path):
+    broken = "arm: [\n"
+    same = diff(side(tmp_path / "a", controllers=broken), side(tmp_path / "b", controllers=broken))
+    assert same.equivalent and same.not_compared == []
+    other = diff(side(tmp_path / "c", controllers=broken),
+                 side(tmp_path / "d", controllers=broken + "# a comment\n"))
+    assert [(i.element, i.name) for i in other.not_compared] == [
+        ("controllers", "config/controllers.yaml")]
+
+
+@pytest.mark.parametrize("which", ("old", "new"))
+def test_a_companion_in_a_folder_that_is_a_link_is_not_compared(tmp_path, which):
+    """The config folder of a side a link to a folder holding the same file (outside the
+    repository): discovery never enters it, and the file was 'removed' (exit 1)."""
+    import shutil
+
+    sides = {name: tmp_path / name for name in ("old", "new")}
+    robots = {name: side(folder) for name, folder in sides.items()}
+    shutil.move(sides[which] / "config", tmp_path / "elsewhere")
+    (sides[which] / "config").symlink_to(tmp_path / "elsewhere")
+    robots[which] = load_text(sides[which], ARM, "arm.urdf")
+    result = diff(robots["old"], robots["new"])
+    assert [(i.element, i.name, bool(getattr(i, which))) for i in result.not_compared] == [
+        ("controllers", "config/controllers.yaml", True)]
+    assert result.companions == [] and "elsewhere" not in repr(result.not_compared)

@@ -14,7 +14,7 @@ from tests.description.test_launch import PACKAGE, _repo
 
 
 def _read(root: Path, name: str):
-    return read_launch(root / name, modules=repository_modules(root))
+    return read_launch(root / name, root)
 
 
 def _described(read) -> list[Description]:

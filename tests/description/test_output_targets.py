@@ -221,3 +221,20 @@ def test_two_outputs_of_one_command_naming_one_file_are_refused_before_the_work(
                        for word in words])
     assert result.exit_code == 2, result.output
     assert "name one file" in result.stderr and not (tmp_path / "x.svg").exists()
+
+
+@pytest.mark.parametrize("place, said", [
+    ("report.urdf/x.json", "'{tmp}/report.urdf' is a file, not a folder"),
+    ("pipe/x.json", "'{tmp}/pipe' is a named pipe, not a folder"),
+    ("report.urdf/a/x.json", "folder '{tmp}/report.urdf/a' does not exist (a part of it is a "
+                             "file)"),
+    ("missing/x.json", "folder '{tmp}/missing' does not exist"),
+])
+def test_an_output_whose_folder_is_something_else_says_what_is_there(tmp_path, place, said):
+    """``-o report.urdf/x.json`` of a file report.urdf said "folder 'report.urdf' does not
+    exist" (and so of a named pipe): the refusal names what is there instead."""
+    (tmp_path / "report.urdf").write_text("x")
+    os.mkfifo(tmp_path / "pipe")
+    with pytest.raises(UsageError) as refused:
+        files.check_output(tmp_path / place)
+    assert str(refused.value) == f"cannot write '{tmp_path / place}': " + said.format(tmp=tmp_path)

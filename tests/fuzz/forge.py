@@ -359,7 +359,7 @@ class Invocation:
     checks: list[Path] = field(default_factory=list)  # judged after the run (rewritten by it)
 
 
-_FORMAT_KINDS = {"json": "json", "sarif": "json", "gitlab": "json", "rdjson": "json",
+_FORMAT_KINDS = {"json": "json", "sarif": "json", "gitlab": "json", "rdjson": "rdjson",
                  "json-lines": "json-lines", "junit": "junit", "github": "github",
                  "markdown": "markdown", "csv": "csv", "yaml": "yaml"}
 
@@ -761,12 +761,17 @@ def judge(kind: str, stdout: str, stderr: str, where: str) -> list[str]:
     """What is forged in a command's standard output (of ``kind``) and standard error."""
     found = terminal(stderr, f"{where} (stderr)")
     out = f"{where} (stdout)"
-    if kind in ("json", "json-lines"):
-        for document in ([stdout] if kind == "json" and stdout else stdout.splitlines()):
+    if kind in ("json", "json-lines", "rdjson"):
+        for document in ([stdout] if kind != "json-lines" and stdout else stdout.splitlines()):
             try:
-                found += _exact(strict_json(document), out)
+                data = strict_json(document)
             except ValueError as error:
                 found.append(f"{out}: not JSON: {error}")
+                continue
+            if kind == "rdjson":  # reviewdog posts each message as Markdown, not as data
+                for diagnostic in data.get("diagnostics", []):
+                    found += markdown(diagnostic.pop("message"), f"{out} message")
+            found += _exact(data, out)
         found += terminal(stdout, out) + unpaired(stdout, out)
     elif kind == "junit":
         found += xml_document(stdout.encode(), out, JUNIT_ELEMENTS)

@@ -389,3 +389,28 @@ def test_two_names_that_are_not_utf8_are_told_apart_in_every_json_format(format_
 
     assert [os.fsdecode(name_bytes(first)) for first, _ in pairs] == \
         [result.path for result in TWO_NAMES]
+
+
+MARKDOWN_NAMES = ("![x](https://example.com/p.png)", "@org/team", "#1 [link](javascript:x)",
+                  "<img src=x onerror=alert(1)>", "**bold** _em_ `code` | cell", "# heading",
+                  "``` fenced", "https://example.com/autolink", "a\n\n# b")
+
+
+@pytest.mark.parametrize("name", MARKDOWN_NAMES)
+def test_rdjson_messages_are_markdown_text_to_reviewdog(name):
+    """reviewdog posts a diagnostic's message as it is into a Markdown review comment
+    (``commentutil.MarkdownComment``): a link named ``![x](https://...)`` loaded an image in the
+    pull request, ``@org/team`` notified a team. The message is escaper.markdown's code span:
+    read by a Markdown parser, it is one piece of code holding the message."""
+    from markdown_it import MarkdownIt
+
+    results = [FileResult("a.urdf", [Finding("U204", "inverted-limits", Severity.ERROR,
+                                             f"joint '{name}': swap them",
+                                             Location("a.urdf", 7))])]
+    stream = io.StringIO()
+    render("rdjson", results, stream)
+    message = json.loads(stream.getvalue())["diagnostics"][0]["message"]
+    [paragraph] = [t for t in MarkdownIt("commonmark").parse(message) if t.type == "inline"]
+    assert [child.type for child in paragraph.children] == ["code_inline"]
+    assert paragraph.children[0].content.replace("\\|", "|") == \
+        f"joint '{name}': swap them".replace("\n", "\\n")

@@ -18,7 +18,9 @@ HELP = ("Compare two robot descriptions (OLD NEW, or --rev REV FILE: FILE as it 
         "every frame moves at zero and over sampled configurations, mass and centre of mass, "
         "reach of --chain, pairs that newly collide or no longer do; the SRDF's groups and "
         "disabled pairs and the controller YAML beside each. Exit 0 equivalent, 1 "
-        "different. Formatting, comments and attribute order are no change.")
+        "different, 2 when a file beside them could not be read or parsed on a side (not "
+        "compared, said which) or a usage error. Formatting, comments and attribute order are "
+        "no change.")
 FORMATS = ("text", "json", "markdown")
 
 
@@ -133,7 +135,7 @@ def _compare(old, new, options, chains, output_format, output, drawing) -> int:
         write_output(output, buffer.getvalue())
     if drawing[0] is not None:
         _render(old, new, result, *drawing)
-    return 0 if result.equivalent else 1
+    return 2 if result.not_compared else 0 if result.equivalent else 1
 
 
 def _render(old, new, result, path, max_triangles) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from urdftool.compare.effect import Effects
-from urdftool.compare.structure import Change, Renames
+from urdftool.compare.structure import Change, NotCompared, Renames
 
 
 @dataclass(frozen=True)
@@ -28,7 +28,8 @@ class DiffOptions:
 
 @dataclass
 class Diff:
-    """Two robots compared: their changes, renames, effects, companions' changes, warnings."""
+    """Two robots compared: their changes, renames, effects, companions' changes, the
+    companion files not compared (a side could not read or parse one), warnings."""
 
     old: str
     new: str
@@ -36,12 +37,14 @@ class Diff:
     renames: Renames
     effects: Effects | None
     companions: list[Change] = field(default_factory=list)
+    not_compared: list[NotCompared] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
 
     @property
     def equivalent(self) -> bool:
-        """No change in structure or companions: the two describe the same robot."""
-        return not self.changes and not self.companions
+        """No change in structure or companions, and every file compared: the two describe
+        the same robot."""
+        return not self.changes and not self.companions and not self.not_compared
 
 
 def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
@@ -66,7 +69,7 @@ def diff(old, new, options: DiffOptions = DiffOptions()) -> Diff:
     if options.companions:
         from urdftool.compare.companions import compare
 
-        result.companions = compare(old, new, found)
+        result.companions, result.not_compared = compare(old, new, found)
     return result
 
 

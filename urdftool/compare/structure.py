@@ -52,6 +52,22 @@ class Change:
 
 
 @dataclass
+class NotCompared:
+    """A file of the same place beside both robots (an SRDF, a controller YAML) that a side
+    could not read or parse, so that neither equal nor changed can be said of it.
+
+    element: 'srdf' or 'controllers'
+    name: its path relative to the robot's folder (the new side's)
+    old, new: why that side's file was not read or parsed (None: it was, or it has none)
+    """
+
+    element: str
+    name: str
+    old: str | None
+    new: str | None
+
+
+@dataclass
 class Renames:
     """Old name -> new name of renamed links and joints (unchanged names are not listed)."""
 

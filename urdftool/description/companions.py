@@ -84,7 +84,10 @@ ROBOT_SUFFIXES = (".urdf", ".urdf.xacro")
 class Companions(Record):
     """The companion files of one robot, parsed.
 
-    used: path -> why it is this robot's; unused: path found but not this robot's -> why
+    used: path -> why it is this robot's; unused: path found but not this robot's -> why;
+    unread: path of the name of a companion found where no file could be read (a folder, a
+    FIFO, a link to another folder), and each folder companions are looked for in that is a
+    link -> why (``diff`` says so of the place, not "removed")
     """
 
     controllers: list[YamlFile]
@@ -96,6 +99,7 @@ class Companions(Record):
     moveit_given: list[Path]  # MoveIt settings launch files load
     used: dict[Path, str]
     unused: dict[Path, str]
+    unread: dict[Path, str]
 
     def describe(self) -> list[str]:
         """One line per file found: what it is used as and why, or why it is not used."""
@@ -106,18 +110,20 @@ class Companions(Record):
             ("MoveIt controllers", f) for f in self.moveit_controllers]
         lines = [f"{kind}: {file.display} ({self.used.get(file.path, 'named')})" for kind, file in kinds]
         lines += [f"not used: {display_path(path)} ({why})" for path, why in self.unused.items()]
+        lines += [f"not read: {display_path(path)} ({why})" for path, why in self.unread.items()]
         return lines + self.launch
 
     launch: list[str]  # what the robot's launch files told
 
     __slots__ = ("controllers", "srdf", "spec", "kinematics", "planning_limits",
-                 "moveit_controllers", "moveit_given", "used", "unused", "launch")
+                 "moveit_controllers", "moveit_given", "used", "unused", "unread", "launch")
 
     def __init__(self, controllers: list[YamlFile] = NEW, srdf: SrdfFile | None = None,
                  spec: YamlFile | None = None, kinematics: YamlFile | None = None,
                  planning_limits: YamlFile | None = None, moveit_controllers: list[YamlFile] = NEW,
                  moveit_given: list[Path] = NEW, used: dict[Path, str] = NEW,
-                 unused: dict[Path, str] = NEW, launch: list[str] = NEW) -> None:
+                 unused: dict[Path, str] = NEW, unread: dict[Path, str] = NEW,
+                 launch: list[str] = NEW) -> None:
         self.controllers = [] if controllers is NEW else controllers
         self.srdf = srdf
         self.spec = spec
@@ -127,6 +133,7 @@ class Companions(Record):
         self.moveit_given = [] if moveit_given is NEW else moveit_given
         self.used = {} if used is NEW else used
         self.unused = {} if unused is NEW else unused
+        self.unread = {} if unread is NEW else unread
         self.launch = [] if launch is NEW else launch
 
 
@@ -139,6 +146,9 @@ def _discover(robot) -> Companions:
     named = robot.companion_paths
     found = Companions()
     folders = search_folders(Path(robot.path)) if robot.path != "-" else []
+    if robot.path != "-":
+        for folder in _linked_folders(Path(os.path.abspath(robot.path))):
+            found.unread[folder] = "a folder that is a symbolic link: not entered"
     owner = _Owner(robot, folders)
     if robot.path != "-":
         found.launch = launched.runtime(robot).describe()
@@ -310,6 +320,14 @@ def search_folders(robot_path: Path) -> list[Path]:
 
 @per_run
 def _search_folders(robot_path: Path) -> tuple[Path, ...]:
+    root, named = _named_folders(robot_path)
+    return tuple(folder for folder in named
+                 if kind_of(folder, follow=False) == "folder" and inside(folder, root))
+
+
+def _named_folders(robot_path: Path) -> tuple[Path, tuple[Path, ...]]:
+    """(the robot's repository, the folders its companions are looked for in, each once, as
+    the module doc names them, whatever is there)."""
     base = robot_path.parent
     root = containment_root(base)
     folders = [base, base / "config"]
@@ -320,11 +338,16 @@ def _search_folders(robot_path: Path) -> tuple[Path, ...]:
     stems = {home.name.removesuffix("_description"), robot_path.name.split(".")[0]}
     for stem in sorted(stems):
         folders.append(home.parent / f"{stem}_moveit_config" / "config")
-    unique = []
-    for folder in dict.fromkeys(folders):
-        if kind_of(folder, follow=False) == "folder" and inside(folder, root):
-            unique.append(folder)
-    return tuple(unique)
+    return root, tuple(dict.fromkeys(folders))
+
+
+@per_run
+def _linked_folders(robot_path: Path) -> tuple[Path, ...]:
+    """The folders companions are looked for in that are symbolic links: not entered, wherever
+    they lead (:func:`_candidates` does not follow a link to another folder either)."""
+    root, named = _named_folders(robot_path)
+    return tuple(folder for folder in named
+                 if kind_of(folder, follow=False) == "link" and inside(folder.parent, root))
 
 
 def _package(base: Path, root: Path) -> Path | None:
@@ -342,21 +365,38 @@ def _package(base: Path, root: Path) -> Path | None:
     return None
 
 
-def _candidates(folders: list[Path], pattern: str) -> list[Path]:
+def _candidates(folders: list[Path], pattern: str, found: Companions | None = None) -> list[Path]:
     """Regular files matching ``pattern`` in ``folders`` whose real location is that folder
-    (no link leading elsewhere)."""
-    return [path for folder in folders for path in _candidates_in(folder, pattern)]
+    (no link leading elsewhere); what else matches is ``found.unread`` (when given), with
+    why."""
+    paths = []
+    for folder in folders:
+        for path, why in _candidates_in(folder, pattern):
+            if why is None:
+                paths.append(path)
+            elif found is not None:
+                found.unread[path] = why
+    return paths
 
 
 @per_run
-def _candidates_in(folder: Path, pattern: str) -> tuple[Path, ...]:
+def _candidates_in(folder: Path, pattern: str) -> tuple[tuple[Path, str | None], ...]:
+    """(path, None) of each regular file matching ``pattern`` in ``folder``, (path, why it
+    is not read) of anything else so named."""
     real_folder = Path(real_path(folder))
     paths = []
     for name, kind in listing(folder, pattern):
         path = folder / name
-        if kind == "file" or kind == "link" and Path(real_path(path)).parent == real_folder \
-                and kind_of(path) == "file":  # where a link leads is looked at only inside
-            paths.append(path)
+        if kind == "link" and Path(real_path(path)).parent != real_folder:
+            why = "a symbolic link to another folder: not followed"
+        elif kind == "link":  # where a link leads is looked at only inside its folder
+            kind = kind_of(path) or "link"
+            why = None if kind == "file" else "a symbolic link to nothing" if kind == "link" \
+                else f"a link to a {'folder' if kind == 'folder' else 'named pipe or device'}"
+        else:
+            why = None if kind == "file" else "a folder" if kind == "folder" else \
+                "a named pipe or device, not a regular file"
+        paths.append((path, why))
     return tuple(paths)
 
 
@@ -448,7 +488,7 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
     chosen = named or ([f for f in files if f.path not in named] if loaded else [])
     # A launch file loading a file urdftool cannot resolve may load any of those found
     decided = bool(named) or (bool(chosen) and not facts.unresolved_loads())
-    for path in _candidates(folders, "*.yaml"):
+    for path in _candidates(folders, "*.yaml", found):
         if path.name in SPEC_NAMES or path.name == "kinematics.yaml" or real_path(path) in seen:
             continue
         parsed = controller_yaml(robot, path)
@@ -578,7 +618,7 @@ def _parameter_path(robot, value: str, base: Path, package: Path | None) -> Path
 
 
 def _pick_srdf(robot, folders, owner: _Owner, found: Companions) -> Path | None:
-    paths = _candidates(folders, "*.srdf")
+    paths = _candidates(folders, "*.srdf", found)
     named = [p for p in paths if owner.matches(p)]
     if named:
         chosen, why = named[0], "named after the robot"
@@ -689,7 +729,7 @@ def _srdf_robot_name(path: Path) -> str | None:
 def _auto_yaml(folders, names, owner: _Owner, found: Companions, wanted, what: str,
                picked: SrdfFile | None = None):
     for name in names:
-        for path in _candidates(folders, name):
+        for path in _candidates(folders, name, found):
             parsed = read_yaml(path)
             if not wanted(parsed):
                 continue

@@ -283,6 +283,19 @@ def read_yaml(path: Path, as_: str = "companion YAML", substituted: bool | None 
     text = _read_text(path, result, as_)
     if text is None:
         return result
+    return _parsed_yaml(result, text, substituted, substitutions, parameters)
+
+
+def yaml_of(document: CompanionFile, parameters: bool = True) -> YamlFile:
+    """The YAML of a text file read (:func:`read_text`, its ``text`` not None), parsed as
+    :func:`read_yaml` parses a file (``parameters`` as there): what a reader that tells a file
+    it could not read from one it could not parse asks (a YAML launch file)."""
+    return _parsed_yaml(YamlFile(document.path, document.display), document.text, None, None,
+                        parameters)
+
+
+def _parsed_yaml(result: YamlFile, text: str, substituted, substitutions,
+                 parameters: bool) -> YamlFile:
     if substituted and substitutions:
         text = _SUBSTITUTION.sub(lambda m: substitutions[m.group(1)]
                                  if "\n" not in substitutions.get(m.group(1), "\n") else m.group(0), text)
@@ -492,14 +505,21 @@ def read_text(path: Path, limit: int = MAX_SIZE, as_: str = "launch file") -> Co
 
 
 def _read_text(path: Path, result, as_: str, limit: int = MAX_SIZE) -> str | None:
-    """The file's text when it is a regular file of at most ``limit`` bytes; else None and
-    ``result.problem`` says why (nothing is read from a FIFO or a device)."""
+    """The file's text when it is a regular file of at most ``limit`` bytes in UTF-8; else None
+    and ``result.problem`` says why (nothing is read from a FIFO or a device), at
+    ``result.line`` where a byte is not UTF-8."""
     try:
-        return read_regular(path, limit, as_).decode("utf-8")
+        data = read_regular(path, limit, as_)
     except TooLarge:
         result.problem = f"larger than {limit} bytes; not read"
+        return None
     except OSError as error:
         result.problem = f"cannot be read: {error.strerror}"
-    except UnicodeDecodeError as error:
-        result.problem = f"cannot be read: {error}"
+        return None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:  # (Python's words named a position in bytes)
+        result.line = data.count(b"\n", 0, error.start) + 1
+        result.problem = (f"not UTF-8 text: byte 0x{data[error.start]:02x} on line "
+                          f"{result.line} ({error.reason})")
     return None

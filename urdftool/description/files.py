@@ -773,7 +773,7 @@ def check_output(path) -> str:
     folder = path.parent
     try:  # a name the system cannot look up (too long, a loop) is refused as one missing
         if not folder.is_dir():
-            raise UsageError(f"cannot write '{path}': folder '{folder}' does not exist")
+            raise UsageError(f"cannot write '{path}': {_no_folder_there(folder)}")
         real = real_folder(folder)
         if path.is_dir() and not path.is_symlink():
             raise UsageError(f"cannot write '{path}': it is a folder; give a file name")
@@ -785,6 +785,19 @@ def check_output(path) -> str:
                          "system's own folder, which the output would break; give another "
                          "file name")
     return real
+
+
+def _no_folder_there(folder: Path) -> str:
+    """Why an output's folder is none, as itself: missing, or something else in its place
+    (a file, a named pipe: ``-o report.urdf/x.json`` was "folder 'report.urdf' does not
+    exist" of a file that exists)."""
+    with records.unrecorded():  # (where urdftool writes is no part of what a check read)
+        why = identity_or_why(folder)
+    if isinstance(why, tuple):
+        return f"'{folder}' is a file, not a folder"
+    if why.startswith("a "):
+        return f"'{folder}' is {why}, not a folder"
+    return f"folder '{folder}' {unreachable(folder)}"
 
 
 # the folders a version control system keeps its own data in, by name (a worktree's ``.git``

@@ -32,7 +32,7 @@ import re
 from pathlib import Path
 
 from urdftool.diagnostics import AT_LINE_START
-from urdftool.description.documents import read_text, read_yaml, YamlMap
+from urdftool.description.documents import read_text, yaml_of, YamlMap
 from urdftool.errors import described
 from urdftool.records import Frozen, NEW, Record
 
@@ -515,7 +515,8 @@ def read_launch_text(path: Path) -> LaunchFile | str:
     document = read_text(path, MAX_LAUNCH_SIZE)
     if document.text is None:
         form = "ros2-python" if path.name.endswith(".py") else "ros1"
-        return LaunchFile(path, document.display, form, problem=document.problem)
+        return LaunchFile(path, document.display, form, problem=document.problem,
+                          problem_line=document.line)
     if path.name.endswith(".py"):
         return document.text
     return _read_xml_launch(path, document.display, document.text)
@@ -534,9 +535,13 @@ def _read_xml_launch(path: Path, display: str, text: str) -> LaunchFile:
     try:
         root, positions = parse(text.encode())
     except XmlProblem as error:
+        # what it is: empty, not well-formed, or well-formed and refused (an entity declared,
+        # an external DTD, nested too deep, binary), each said as itself (all were "not
+        # well-formed XML")
         launch.problem = "empty" if error.kind == "empty" else (  # (its message says <robot>)
-            f"not well-formed XML: {error.message.removeprefix('malformed XML: ')}" +
-            (f" (line {error.line})" if error.line else ""))
+            f"not well-formed XML: {error.message.removeprefix('malformed XML: ')}"
+            if error.message.startswith("malformed XML: ") else f"not read: {error.message}"
+        ) + (f" (line {error.line})" if error.line and error.kind != "empty" else "")
         launch.problem_line = error.line
         return launch
     except (ValueError, SyntaxError) as error:  # lxml's XMLSyntaxError is one
@@ -547,6 +552,7 @@ def _read_xml_launch(path: Path, display: str, text: str) -> LaunchFile:
         return launch
     if root.tag != "launch":
         launch.problem = f"root element is <{root.tag}>, not <launch>"
+        launch.problem_line = positions[root][0] if root in positions else root.sourceline
         return launch
 
     def line(element) -> int | None:
@@ -700,10 +706,14 @@ def _rosparam(element, when, line) -> ParamFile | None:
 # --- YAML (ROS 2) -------------------------------------------------------------------------------
 
 def _read_yaml_launch(path: Path) -> LaunchFile:
-    document = read_yaml(path, "launch file", parameters=False)
-    launch = LaunchFile(path, document.display, "ros2-yaml")
-    if document.problem:
-        launch.problem, launch.problem_line = document.problem, document.line
+    text = read_text(path, MAX_LAUNCH_SIZE)  # (the size every launch file is read at: a YAML
+    # one was read up to 16 MiB)
+    launch = LaunchFile(path, text.display, "ros2-yaml")
+    document = yaml_of(text, parameters=False) if text.text is not None else text
+    if document.problem:  # not read, or not YAML: each said as itself
+        launch.problem = document.problem if text.text is None else \
+            f"not valid YAML: {document.problem.removeprefix('not valid YAML: ')}"
+        launch.problem_line = document.line
         return launch
     data = document.data
     entries = data.get("launch") if isinstance(data, dict) else None

@@ -626,8 +626,7 @@ class LaunchIndex(Record):
         if found is None and isinstance(self.rest, list):
             self.rest = {_key(path): path for path in self.rest}
         if found is None and self.rest is not None and key in self.rest:
-            launch = read_launch(self.rest.pop(key), room=reading_room(self.root),
-                                 modules=repository_modules(self.root))
+            launch = read_launch(self.rest.pop(key), self.root)
             if was_read(launch):
                 self.files[key] = found = launch
         return found
@@ -690,13 +689,25 @@ def launch_file_packages(root: Path) -> dict[str, str | None]:
     return found
 
 
-def read_launch(path: Path, only_test: bool = False, room: Room | None = None,
-                modules: Modules | None = None) -> LaunchFile | None:
-    """One launch file read, never run: XML and YAML by :mod:`urdftool.description.launch`,
-    Python by :mod:`urdftool.description.launch_python` (a launch test from its entry point)
-    at the cost of ``room`` (:func:`reading_room`), the modules it imports found by
-    ``modules`` (:func:`repository_modules`). ``only_test``: a Python file that may be a
-    launch test, None (not parsed) when it is not one."""
+def read_launch(path: Path, root: Path | None = None, only_test: bool = False) -> LaunchFile | None:
+    """One launch file read, never run, once a run: XML and YAML by
+    :mod:`urdftool.description.launch`, Python by :mod:`urdftool.description.launch_python` (a
+    launch test from its entry point) at the cost of the repository ``root``'s room
+    (:func:`reading_room`; a room of its own without ``root``), the modules it imports found
+    as :func:`repository_modules` finds them. ``only_test``: a Python file that may be a launch
+    test, None (not parsed) when it is not one.
+
+    Asked again (why a file was not read, for a finding), the answer is the first reading's:
+    a second reading drew on the room again, which the repository's other files had spent by
+    then, and a file refused as not valid Python was said to be "too large to read all" (its
+    line lost)."""
+    return _read_launch(path, root, only_test)
+
+
+@per_run
+def _read_launch(path: Path, root: Path | None, only_test: bool) -> LaunchFile | None:
+    room = reading_room(root) if root is not None else None
+    modules = repository_modules(root) if root is not None else None
     read = read_launch_text(path)
     if isinstance(read, str):
         if is_launch_test(read):
@@ -796,10 +807,8 @@ def launch_index(root: Path, only: frozenset | None = None) -> LaunchIndex:
     files = {}
     if not chosen:
         return LaunchIndex(root, files, [], truncated)
-    # (asked once: each answer remembered per run is replayed into the record at each asking)
-    room, modules = reading_room(root), repository_modules(root)
     for path in chosen:
-        launch = read_launch(path, room=room, modules=modules)
+        launch = read_launch(path, root)
         if was_read(launch):
             files[_key(path)] = launch
     packages = packages_below(root)
@@ -824,11 +833,10 @@ def launch_tests(root: Path) -> list[Configuration]:
     count against the launch files' bound."""
     index, packages = launch_index(root), packages_below(root)
     tests = [launch for launch in index.files.values() if launch.test]
-    room, modules = reading_room(root), repository_modules(root)
     for path in launch_files(root, tests=True)[0]:
         if _key(path) in index.files or is_launch_file(path, root):
             continue
-        launch = read_launch(path, only_test=True, room=room, modules=modules)
+        launch = read_launch(path, root, only_test=True)
         if was_read(launch):  # one not read: runtime.unread_naming
             tests.append(launch)
     return [_expand_top(index, launch, packages) for launch in tests]

@@ -26,12 +26,13 @@ import re
 from pathlib import Path
 
 from urdftool.description.documents import read_yaml
-from urdftool.description.files import enclosing_root, kind_of, listing, read_regular, real_path
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, enclosing_root, kind_of, listing, \
+    read_regular, real_path
 from urdftool.description.launch import MAX_LAUNCH_SIZE, is_launch_file, is_launch_test, named
 from urdftool.description.launch_configs import (BY_DEFAULT, WILD, Configuration, Described,
                                                  Loaded, Resolved, Started, launch_file_packages,
                                                  launch_files, launch_index, launch_tests,
-                                                 read_launch, reading_room, repository_modules,
+                                                 read_launch,
                                                  shown)
 from urdftool.description.packages import (build_tools, containment_root, declared_dependencies,
                                            package_name, package_of, packages_below)
@@ -597,7 +598,7 @@ def _problem(launch: Path, root: Path) -> tuple[str, int | None]:
     line it is at when the parser said, as its one reading
     (:func:`~urdftool.description.launch_configs.read_launch`, asked again, once a run: a file
     ``ast`` cannot parse costs its parse again) found."""
-    read = read_launch(launch, room=reading_room(root), modules=repository_modules(root))
+    read = read_launch(launch, root)
     return (getattr(read, "problem", None) or "what it does is not known",
             getattr(read, "problem_line", None))
 
@@ -661,8 +662,9 @@ def _not_read(root: Path, tests: bool,
     for launch in launch_files(root, tests=tests)[0]:
         if only is not None and os.fspath(launch) not in only or real_path(launch) in read:
             continue
-        try:
-            data = read_regular(launch, MAX_LAUNCH_SIZE, as_="launch")
+        try:  # (up to any file's limit: one over a launch file's is not read, and is said so
+            # when it names the file, not left out in silence)
+            data = read_regular(launch, DEFAULT_MAX_FILE_SIZE, as_="launch")
         except OSError:
             continue
         test = is_launch_test(data.decode("utf-8", "replace"))

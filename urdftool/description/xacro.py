@@ -53,8 +53,8 @@ from urdftool.errors import PackageNotFound
 from urdftool.description import files
 from urdftool.errors import available
 from urdftool.description import xacro_sandbox
-from urdftool.description.xml import MAX_DEPTH, XmlProblem, external_dtd_message, malformed, \
-    too_deep_message
+from urdftool.description.xml import MAX_DEPTH, XmlProblem, entity_message, \
+    external_dtd_message, malformed, too_deep_message
 from urdftool.records import NEW, Record
 
 STAMP = "xmlns:urdftool-loc"
@@ -223,8 +223,7 @@ class _StampingBuilder(ExpatBuilderNS):
         super().install(parser)
 
         def refuse_entity(name, *rest):
-            raise XmlProblem("entity", f"entity declaration '{name}' refused: robot descriptions "
-                             "may not declare entities", parser.CurrentLineNumber)
+            raise XmlProblem("entity", entity_message(name), parser.CurrentLineNumber)
 
         parser.EntityDeclHandler = refuse_entity
         parser.SetParamEntityParsing(expat.XML_PARAM_ENTITY_PARSING_NEVER)

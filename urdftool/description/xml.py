@@ -60,14 +60,20 @@ def attribute(value: str) -> str:
                    for char in value)
 
 
+# (the words of each refusal are for every XML urdftool reads: robot files, launch files)
 def external_dtd_message(where: str) -> str:
-    return (f"external DTD '{where}' refused: robot descriptions may not load DTDs (a DTD "
-            "can read local files or reach the network)")
+    return (f"external DTD '{where}' refused: urdftool loads no DTD (a DTD can read local "
+            "files or reach the network)")
+
+
+def entity_message(name: str) -> str:
+    return (f"entity declaration '{name}' refused: urdftool reads no XML that declares entities "
+            "(they are how XML bombs and local file reads are built)")
 
 
 def too_deep_message() -> str:
     return (f"elements nested deeper than {MAX_DEPTH} levels: refused (libxml2-based parsers "
-            "refuse it too, and no robot description needs it)")
+            "refuse it too, and no robot description or launch file needs it)")
 
 
 # git's conflict markers: seven of one character at the start of a line ("|||||||" is diff3's),
@@ -231,11 +237,8 @@ def start_tag_positions(data: bytes) -> list[tuple[int, int]]:
     try:
         parser.Parse(data, True)
     except _Refused:
-        raise XmlProblem(
-            "entity",
-            f"entity declaration '{refused[0]}' refused: robot descriptions may not declare "
-            "entities (they are how XML bombs and local file reads are built)",
-            parser.CurrentLineNumber, parser.CurrentColumnNumber + 1) from None
+        raise XmlProblem("entity", entity_message(refused[0]), parser.CurrentLineNumber,
+                         parser.CurrentColumnNumber + 1) from None
     except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
         raise malformed(data, str(error), 1) from None
     except _TooDeep:

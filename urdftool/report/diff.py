@@ -65,6 +65,14 @@ def change_line(change, quote=_quoted) -> str:
     return line + (f" ({amount})" if amount else "")
 
 
+def not_compared_line(item, quote=_quoted, why=_text) -> str:
+    """A companion file not compared, with why for each side that could not read it;
+    ``quote`` marks its name, ``why`` the reasons (they quote the file's characters)."""
+    sides = "; ".join(f"{side}: {why(reason)}" for side, reason in (("old", item.old),
+                                                                    ("new", item.new)) if reason)
+    return f"not compared: {item.element} {quote(item.name)} ({sides})"
+
+
 def _where(at: dict, joints: list[str], limit: int = JOINTS_SHOWN, quote=_text) -> str:
     """The values in ``at`` of ``joints``, the joints that move what changed (the other
     joints' values change nothing there), named even at zero (names marked by ``quote``); with
@@ -143,8 +151,10 @@ def text(result) -> str:
     old, new = _text(result.old), _text(result.new)
     if result.equivalent:
         return f"{old} and {new}: equivalent (no change)\n"
-    lines = [f"{old} -> {new}: {len(changes)} change(s)"]
+    lines = [f"{old} -> {new}: {len(changes)} change(s)" if changes else
+             f"{old} and {new}: no change in what was compared"]
     lines += ["  " + change_line(change) for change in changes]
+    lines += ["  " + not_compared_line(item) for item in result.not_compared]
     if result.effects is not None:
         lines += _effect_lines(result.effects)  # its warnings: on stderr, as every command's
     return "\n".join(lines) + "\n"
@@ -157,8 +167,10 @@ def markdown(result) -> str:
     title = f"### Robot description: {_code(result.old)} → {_code(result.new)}"
     if result.equivalent:
         return f"{title}\n\nNo change: the two describe the same robot.\n"
-    out = [title, "", f"**{len(changes)} change(s)**", ""]
+    out = [title, "", f"**{len(changes)} change(s)**" if changes else
+           "**No change in what was compared**", ""]
     out += [f"- {change_line(change, _code)}" for change in changes]
+    out += [f"- {not_compared_line(item, _code, _code)}" for item in result.not_compared]
     effects = result.effects
     if effects is not None:
         out += ["", f"**Effect** over {effects.samples + 1} configurations (zero + "
@@ -212,7 +224,9 @@ def as_json(result) -> dict:
 
     data = {"version": 1, "old": result.old, "new": result.new,
             "equivalent": result.equivalent,
-            "changes": [change(c) for c in result.changes + result.companions]}
+            "changes": [change(c) for c in result.changes + result.companions],
+            "not_compared": [{"element": item.element, "name": item.name, "old": item.old,
+                              "new": item.new} for item in result.not_compared]}
     effects = result.effects
     if effects is not None:
         data["effects"] = {

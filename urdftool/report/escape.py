@@ -20,7 +20,10 @@ rich console markup           :func:`markup`      :func:`text`, and ``[bold]``-s
 GitHub workflow commands      :func:`workflow`    a line break ending the command, ``%``, and in
                                                   a property ``:`` and ``,``
 Markdown (pull-request        :func:`markdown`    headings, images, links, raw HTML, mentions,
-comments, job summaries)                          table cells: the text is a code span
+comments, job summaries;                          table cells: the text is a code span
+rdjson's messages, which
+reviewdog posts as review
+comments)
 XML (JUnit; lxml writes it)   :func:`xml`         characters XML 1.0 cannot hold; line breaks
                                                   that would start a line in a CI page; on a
                               :func:`write_xml`   stream whose encoding lacks a character, a
@@ -35,11 +38,17 @@ Graphviz DOT                  :func:`dot`         a quoted ID ended early, DOT's
                                                   ID (one to one)
 YAML documents                :func:`yaml_text`   a scalar folded or broken onto a line of its
                                                   own; non-printable characters
+editor notifications          :func:`notification` a line break or control character (some
+(the language server's                            clients print it in a terminal), and the
+``window/showMessage``)                           link grammar of VS Code's notifications:
+                                                  ``[text](command:...)`` runs the command
+                                                  when clicked
 SARIF message text           :func:`sarif_text`  SARIF's own grammar inside the JSON string:
                                                   ``[text](0)`` an embedded link, ``{0}`` a
                                                   placeholder, ``\\[`` a bracket
-JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact, the
-rdjson, json-lines, LSP)      ``json_output``     bytes are ASCII (``\\uXXXX``); a name's
+JSON (json, sarif, gitlab,    the encoder:        nothing to escape: the data stays exact (but
+rdjson, json-lines, LSP)      ``json_output``     the message texts above), the bytes are
+                                                  ASCII (``\\uXXXX``); a name's
                               (``paired``: LSP)   undecodable byte (a lone surrogate) is U+FFFD
                                                   and its two hex digits, one to one
                                                   (``json_output.named``; SARIF's URIs ``%FF``)
@@ -221,6 +230,22 @@ def svg(value) -> str:
 _FORMULA = ("=", "+", "-", "@")
 
 
+# VS Code's link in a notification (vs/base/common/linkedText.ts: ``[label](href)`` of an
+# http(s), command or file URI, opened with allowCommands): what makes text a link is "](",
+# a label's bracket closed right before the link's
+_NOTIFICATION_LINK = re.compile(r"\]\(")
+
+
+def notification(value) -> str:
+    """A message an editor shows as a notification (the language server's
+    ``window/showMessage``): :func:`text` (one line; clients such as Neovim print it in a
+    terminal), and no link: VS Code makes ``[label](command:ID)`` in a notification a link
+    that runs the command when clicked (its renderer opens it with ``allowCommands``), so a
+    settings key or a file name of the repository written so was one click from a command;
+    ``](`` is written ``] (``, which no link grammar reads as one."""
+    return _NOTIFICATION_LINK.sub("] (", text(value))
+
+
 def sarif_text(value) -> str:
     """A SARIF plain text message (a result's, a related location's): the text exact for a SARIF
     viewer. SARIF reads ``[text](id)`` as an embedded link (3.11.6: to a related location or a
@@ -270,5 +295,5 @@ def yaml_text(data) -> str:
     return yaml.dump(data, Dumper=Dumper, sort_keys=False, width=float("inf"))
 
 
-__all__ = ["Lines", "csv_cell", "dot", "lines", "markdown", "markup", "printable", "sarif_text",
-           "svg", "text", "workflow", "write_xml", "xml", "yaml_text"]
+__all__ = ["Lines", "csv_cell", "dot", "lines", "markdown", "markup", "notification",
+           "printable", "sarif_text", "svg", "text", "workflow", "write_xml", "xml", "yaml_text"]

@@ -282,6 +282,13 @@ def zbuffer(corners, depths, width: int, height: int, keys=None, covered=None):
     A pixel centre on an edge two triangles share is covered by both (no cracks); on a tie
     the triangle listed first wins. ``covered``: called chunk by chunk with the
     ``(pixels, triangles)`` of every pixel centre each triangle covers, hidden or not.
+
+    Without ``covered`` or ``keys``, the triangles are drawn nearest first, tile by tile
+    (:func:`_nearest_first`): a tile of the picture already covered nearer than a triangle's
+    nearest corner is not tested for it, so hidden surfaces cost their tiles, not their
+    pixels (2,500 cubes drawn over one another in an OBJ of 300 KB tested 10^9 pixels, past
+    the time budget). The answer is the same: which triangle wins a pixel does not depend on
+    the order they are drawn in.
     """
     import numpy as np
 
@@ -298,27 +305,143 @@ def zbuffer(corners, depths, width: int, height: int, keys=None, covered=None):
     high = np.minimum(high, [width - 1, height - 1]).astype(np.int64)
     span = high - low + 1
     usable = (np.abs(area) > 1e-12) & (span > 0).all(axis=1)
-    # triangles in groups of one box size (powers of two across and down), tested together
-    size = np.ones((n, 2), dtype=np.int64)
-    size[usable] = 1 << np.ceil(np.log2(span[usable])).astype(np.int64)
-    kinds = size[:, 0] * (1 << 32) + size[:, 1]
-    for kind in np.unique(kinds[usable]):
-        members = np.flatnonzero(usable & (kinds == kind))
-        across, down = int(kind >> 32), int(kind & 0xFFFFFFFF)
-        step = max(1, _RASTER_CHUNK // (across * down))
-        for first in range(0, len(members), step):
-            chunk = members[first:first + step]
-            _cover(chunk, (across, down), corners, depths, area, low, high, width, keys,
-                   buffer, index, covered)
+    if keys is None and covered is None:
+        _nearest_first(np.flatnonzero(usable), corners, depths, area, low, high, width, height,
+                       buffer, index)
+        return index.reshape(height, width)
+    usable = np.flatnonzero(usable)
+    _cover_boxes(usable, low[usable], high[usable], corners, depths, area, width, keys, buffer,
+                 index, covered)
     return index.reshape(height, width)
 
 
+def _cover_boxes(triangles, lo, hi, corners, depths, area, width: int, keys, buffer, index,
+                 covered) -> None:
+    """:func:`_cover` of each of ``triangles`` within its box ``lo``..``hi`` (first and last
+    pixel across and down), in groups of one box size (powers of two across and down),
+    tested together."""
+    import numpy as np
+
+    size = 1 << np.ceil(np.log2(hi - lo + 1)).astype(np.int64)
+    kinds = size[:, 0] * (1 << 32) + size[:, 1]
+    for kind in np.unique(kinds):
+        members = np.flatnonzero(kinds == kind)
+        across, down = int(kind >> 32), int(kind & 0xFFFFFFFF)
+        step = max(1, _RASTER_CHUNK // (across * down))
+        for first in range(0, len(members), step):
+            part = members[first:first + step]
+            _cover(triangles[part], (across, down), corners, depths, area, lo[part], hi[part],
+                   width, keys, buffer, index, covered)
+
+
 _RASTER_CHUNK = 1 << 20  # pixel tests at a time [samples]
+_NO_TRIANGLE = 1 << 62  # an index larger than any triangle's, replaced within the chunk
+TILE = 16  # [pixels] a side of the tiles :func:`_nearest_first` culls by
+GROUP_TILES = 4096  # tiles a group of :func:`_nearest_first` reaches at least
+
+
+def _nearest_first(usable, corners, depths, area, low, high, width: int, height: int, buffer,
+                   index) -> None:
+    """:func:`zbuffer`'s drawing of the triangles ``usable`` into ``buffer`` and ``index``,
+    nearest first in groups, each triangle tested only in the tiles (:data:`TILE` pixels a
+    side) its edges may reach and not already covered, every pixel of them, nearer than its
+    nearest corner: pixel tests grow with what shows, not with what lies behind it."""
+    import numpy as np
+
+    if not len(usable):
+        return
+    d = depths[usable]
+    # the nearest a triangle can be at a pixel centre: its nearest corner, and a margin for the
+    # edge tolerance of :func:`_cover` (a weight of -1e-9 reaches past a corner)
+    nearest = d.max(axis=1) + 1e-8 * (d.max(axis=1) - d.min(axis=1)) + \
+        1e-12 * np.abs(d).max(axis=1)
+    order = np.argsort(-nearest, kind="stable")
+    usable, nearest = usable[order], nearest[order]
+    tiles_across = -(-width // TILE)
+    far = np.full(tiles_across * -(-height // TILE), -np.inf)  # the farthest depth drawn in
+    # each tile once every pixel of it is covered, else -inf
+    tile_low, tile_high = low[usable] // TILE, high[usable] // TILE
+    counts = (tile_high - tile_low + 1).prod(axis=1)
+    ends = np.cumsum(counts)
+    # a group reaches about as many tiles as the picture has (one triangle at least): the
+    # nearer groups have covered what they cover when the farther ones are drawn
+    most = max(len(far), GROUP_TILES)
+    first = 0
+    while first < len(usable):
+        last = max(first + 1, int(np.searchsorted(ends, ends[first] - counts[first] + most,
+                                                  "right")))
+        group = np.arange(first, last)
+        first = last
+        triangle, tile_x, tile_y = _tiles_reached(group, usable, counts, tile_low, tile_high,
+                                                  corners, area, low, high)
+        tile = tile_y * tiles_across + tile_x
+        keep = nearest[triangle] >= far[tile]
+        triangle, tile_x, tile_y, tile = (v[keep] for v in (triangle, tile_x, tile_y, tile))
+        if not len(tile):
+            continue
+        chosen = usable[triangle]
+        lo = np.maximum(np.stack([tile_x, tile_y], axis=1) * TILE, low[chosen])
+        hi = np.minimum(np.stack([tile_x, tile_y], axis=1) * TILE + TILE - 1, high[chosen])
+        _cover_boxes(chosen, lo, hi, corners, depths, area, width, None, buffer, index, None)
+        # (a tile once covered keeps its far depth: what is drawn later only brings a pixel
+        # nearer, so the depth kept stays a bound)
+        tile = np.unique(tile)
+        _update_far(tile[far[tile] == -np.inf], far, buffer, tiles_across, width, height)
+
+
+def _tiles_reached(group, usable, counts, tile_low, tile_high, corners, area, low, high):
+    """(position in ``usable``, tile across, tile down) of each tile of each triangle of
+    ``group`` (positions in ``usable``) whose pixel centres, within the triangle's box, its
+    three edges do not all leave out: a tile no edge function reaches at any of its corners
+    holds no pixel centre of the triangle."""
+    import numpy as np
+
+    triangle = np.repeat(group, counts[group])
+    offset = np.arange(len(triangle)) - np.repeat(np.cumsum(counts[group]) - counts[group],
+                                                  counts[group])
+    across = tile_high[triangle, 0] - tile_low[triangle, 0] + 1
+    tile_x = tile_low[triangle, 0] + offset % across
+    tile_y = tile_low[triangle, 1] + offset // across
+    chosen = usable[triangle]
+    # the pixel centres of the tile within the triangle's box: [x0, x1] x [y0, y1]
+    x0 = np.maximum(tile_x * TILE, low[chosen, 0]) + 0.5
+    x1 = np.minimum(tile_x * TILE + TILE - 1, high[chosen, 0]) + 0.5
+    y0 = np.maximum(tile_y * TILE, low[chosen, 1]) + 0.5
+    y1 = np.minimum(tile_y * TILE + TILE - 1, high[chosen, 1]) + 0.5
+    inverse = 1.0 / area[chosen]
+    reached = np.ones(len(triangle), dtype=bool)
+    points = corners[chosen]
+    for one, two in ((1, 2), (2, 0), (0, 1)):  # the weight of the third corner, as _cover's
+        p, q = points[:, one], points[:, two]
+        # w(x, y) = ((q.x - p.x) (y - p.y) - (q.y - p.y) (x - p.x)) / area: linear, so its
+        # largest value over the rectangle is at a corner
+        along_x = -(q[:, 1] - p[:, 1]) * inverse
+        along_y = (q[:, 0] - p[:, 0]) * inverse
+        largest = (along_x * np.where(along_x > 0, x1, x0) - along_x * p[:, 0]
+                   + along_y * np.where(along_y > 0, y1, y0) - along_y * p[:, 1])
+        reached &= largest >= -1e-6
+    return triangle[reached], tile_x[reached], tile_y[reached]
+
+
+def _update_far(tiles, far, buffer, tiles_across: int, width: int, height: int) -> None:
+    """``far`` of ``tiles``: the farthest depth ``buffer`` holds in each, -inf while a pixel of
+    it is uncovered (pixels past the picture's edge left out)."""
+    import numpy as np
+
+    tile_x, tile_y = tiles % tiles_across, tiles // tiles_across
+    steps = np.arange(TILE)
+    xs = tile_x[:, None, None] * TILE + steps[None, None, :]
+    ys = tile_y[:, None, None] * TILE + steps[None, :, None]
+    inside = (xs < width) & (ys < height)
+    values = np.where(inside, buffer[np.where(inside, ys * width + xs, 0)], np.inf)
+    if len(tiles):
+        far[tiles] = values.reshape(len(tiles), -1).min(axis=1)
 
 
 def raster_tests(corners, width: int, height: int) -> int:
     """How many pixel centres :func:`zbuffer` tests for the triangles ``corners`` ``[n, 3,
-    2]``: each its box of the picture, rounded up to powers of two across and down."""
+    2]`` when it reports each pixel a triangle covers (``covered``): each its box of the
+    picture, rounded up to powers of two across and down."""
     import numpy as np
 
     if not len(corners):
@@ -330,15 +453,16 @@ def raster_tests(corners, width: int, height: int) -> int:
     return int((2 ** np.ceil(np.log2(span[usable]))).prod(axis=1).sum())
 
 
-def _cover(chunk, box: tuple[int, int], corners, depths, area, low, high, width: int, keys,
+def _cover(chunk, box: tuple[int, int], corners, depths, area, lo, hi, width: int, keys,
            buffer, index, covered) -> None:
-    """Rasterise the triangles ``chunk`` (each fits a ``box`` (across, down) of pixels) into
-    the depth ``buffer`` and the ``index`` of the triangle each pixel shows."""
+    """Rasterise the triangles ``chunk`` within the boxes ``lo``..``hi`` (``[len(chunk), 2]``
+    first and last pixel across and down, each fitting a ``box`` (across, down) of pixels)
+    into the depth ``buffer`` and the ``index`` of the triangle each pixel shows."""
     import numpy as np
 
-    px = low[chunk, 0][:, None, None] + np.arange(box[0])[None, None, :]
-    py = low[chunk, 1][:, None, None] + np.arange(box[1])[None, :, None]
-    valid = (px <= high[chunk, 0][:, None, None]) & (py <= high[chunk, 1][:, None, None])
+    px = lo[:, 0][:, None, None] + np.arange(box[0])[None, None, :]
+    py = lo[:, 1][:, None, None] + np.arange(box[1])[None, :, None]
+    valid = (px <= hi[:, 0][:, None, None]) & (py <= hi[:, 1][:, None, None])
     cx, cy = px + 0.5, py + 0.5
     a, b, c = (corners[chunk, i][:, :, None, None] for i in range(3))
     inverse = 1.0 / area[chunk][:, None, None]
@@ -348,29 +472,32 @@ def _cover(chunk, box: tuple[int, int], corners, depths, area, low, high, width:
     wc = 1.0 - wa - wb
     tolerance = -1e-9
     inside = valid & (wa >= tolerance) & (wb >= tolerance) & (wc >= tolerance)
-    which, rows, columns = np.nonzero(inside)
-    if not len(which):
+    # the samples inside, by their place in the flat arrays (one index each, where three
+    # indexed the arrays of three axes: most of the time of a chunk mostly inside)
+    flat = np.flatnonzero(inside)
+    if not len(flat):
         return
+    which, rows, columns = flat // (box[0] * box[1]), flat // box[0] % box[1], flat % box[0]
     triangles = chunk[which]
     if keys is None:
         d = depths[triangles]
-        depth = (wa[which, rows, columns] * d[:, 0] + wb[which, rows, columns] * d[:, 1]
-                 + wc[which, rows, columns] * d[:, 2])
+        depth = (wa.ravel()[flat] * d[:, 0] + wb.ravel()[flat] * d[:, 1]
+                 + wc.ravel()[flat] * d[:, 2])
     else:
         depth = keys[triangles].astype(float)
-    pixel = py[which, rows, 0] * width + px[which, 0, columns]
+    pixel = (lo[which, 1] + rows) * width + lo[which, 0] + columns
     if covered is not None:
         covered(pixel, triangles)
-    # the nearest sample per pixel within the chunk (first listed on a tie), then the buffer
-    order = np.lexsort((-triangles, depth, pixel))
-    pixel, depth, triangles = pixel[order], depth[order], triangles[order]
-    last = np.r_[pixel[1:] != pixel[:-1], True]
-    pixel, depth, triangles = pixel[last], depth[last], triangles[last]
-    nearer = depth > buffer[pixel]
-    tie = (depth == buffer[pixel]) & (triangles < index[pixel])
-    better = nearer | tie
-    buffer[pixel[better]] = depth[better]
-    index[pixel[better]] = triangles[better]
+    # the nearest depth at each pixel, then among the samples at it (and the triangle there
+    # before, when as near) the first listed: two unbuffered reductions, where a sort of the
+    # chunk's samples by pixel, depth and triangle cost 1.6 us a sample (2,500 cubes drawn over
+    # one another, 10^8 samples, past the time budget)
+    before = buffer[pixel]
+    np.fmax.at(buffer, pixel, depth)  # (fmax: a depth that is no number never wins)
+    after = buffer[pixel]
+    index[pixel[before < after]] = _NO_TRIANGLE  # a nearer sample: the triangle there loses
+    wins = depth == after
+    np.minimum.at(index, pixel[wins], triangles[wins])
 
 
 def _colour_image(drawn: _Drawn, shown):

@@ -1,11 +1,18 @@
 """``--format rdjson``: reviewdog's Diagnostic Format (``reviewdog -f=rdjson``), which posts the
 findings as review comments; the macro call sites are its ``related_locations``.
 
+A diagnostic's ``message`` is Markdown where reviewdog posts it: its review comments (GitHub,
+GitLab, Gitea) write the message as it is after their own prefix
+(``commentutil.MarkdownComment``), so it is written by :func:`~urdftool.report.escape.markdown`,
+the one escaper of Markdown: a code span, in which a link named ``![x](https://...)`` loads no
+image, ``@team`` mentions nobody and ``<img>`` is text.
+
 https://github.com/reviewdog/reviewdog/tree/master/proto/rdf
 """
 
 from __future__ import annotations
 
+from urdftool.report.escape import markdown
 from urdftool.report.json_output import write_json
 from urdftool.report.summary import all_findings
 
@@ -32,7 +39,7 @@ def as_dict(results) -> dict:
     diagnostics = []
     for finding in all_findings(results):
         url = rule_url(finding.code)  # the rule's page (urdftool.origin); None: no link
-        entry = {"message": finding.message, "location": _location(finding.location),
+        entry = {"message": markdown(finding.message), "location": _location(finding.location),
                  "severity": _SEVERITIES[finding.severity.value],
                  "code": _with_url({"value": finding.code}, url)}
         if finding.target is not None:  # rdjson has no free properties: the source names it

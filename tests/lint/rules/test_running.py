@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import shutil
 
+import pytest
+
 from conftest import CASES
 
 
@@ -97,3 +99,61 @@ def test_a_file_a_launch_file_names_outside_the_repository_is_a_note_naming_it(t
         (8, "$(find-pkg-share case_unread_launch)/params/linked.yaml"), (12, "/etc/hostname")]
     assert all(f.location.file.endswith("launch/pan.launch.xml") and f.severity.value == "info"
                and "leads outside the repository: not read" in f.message for f in found)
+
+
+NAMING = ('<launch>\n<let name="robot_description" value="$(command \'xacro '
+          '$(find-pkg-share case_unread_launch)/pan.urdf.xacro\')"/>\n')
+
+
+@pytest.mark.parametrize("name, data, said, line", [
+    ("a.launch.xml", b'<!DOCTYPE launch [\n<!ENTITY e "x">]>\n' + NAMING.encode() + b"</launch>\n",
+     "not read: entity declaration 'e' refused: urdftool reads no XML that declares entities", 2),
+    ("b.launch.xml", b"<!DOCTYPE launch SYSTEM 'http://x/y.dtd'>\n" + NAMING.encode()
+     + b"</launch>\n", "not read: external DTD 'http://x/y.dtd' refused", 1),
+    ("c.launch.xml", NAMING.encode() + b"<group>" * 300 + b"</group>" * 300 + b"</launch>",
+     "not read: elements nested deeper than 256 levels", 3),
+    ("d.launch.xml", NAMING.encode() + b"\x00</launch>\n", "not read: file is binary", 1),
+    ("e.launch.xml", NAMING.encode() + b"<arg name='\xff'/></launch>\n",
+     "not UTF-8 text: byte 0xff on line 3", 3),
+    ("f.launch.xml", NAMING.encode() + b"<arg></launch>\n", "not well-formed XML: mismatched", 3),
+    ("g.launch.yaml", b"launch: [\n - {include: {file: pan.urdf.xacro}}\n",
+     "not valid YAML: expected the node content", 2),
+    ("h.launch.xml", NAMING.encode() + b"<!--" + b"x" * 600_000 + b"--></launch>\n",
+     "larger than 524288 bytes; not read", None),
+    ("i.launch.yaml", b"launch: []\n# pan.urdf.xacro " + b"x" * 600_000 + b"\n",
+     "larger than 524288 bytes; not read", None),
+])
+def test_each_launch_file_not_read_is_said_with_its_own_cause_at_its_line(tmp_path, name, data,
+                                                                         said, line):
+    """An entity declared, an external DTD, nesting past 256 levels and NUL bytes were all
+    "not well-formed XML", and said that robot descriptions may not declare entities; a byte
+    that is not UTF-8 was Python's codec error at a byte position; a YAML launch file's error
+    was the parser's words alone, without its line, and it was read up to 16 MiB where every
+    other launch file stops at 512 KiB; a launch file over that size was left out in silence."""
+    folder = tmp_path / "pkg"
+    shutil.copytree(CASES / "U620_launch_file_not_read", folder)
+    (folder / "launch" / "pan.launch.xml").unlink()
+    (folder / "launch" / name).write_bytes(data)
+    found = [f for f in _checked(folder) if f.code == "U620"]
+    assert [(f.location.line, f"could not be read ({said}" in f.message) for f in found] == [
+        (line, True)], [f.message for f in found]
+    assert "robot descriptions may not" not in found[0].message
+
+
+def test_a_launch_file_asked_why_again_gives_its_own_reading_not_a_spent_rooms(tmp_path,
+                                                                                monkeypatch):
+    """The repository's reading room (what its Python launch files may cost) was drawn on
+    again when a finding asked why a file was not read: after the other files had spent it, a
+    launch file refused as not valid Python was said to be "too large to read all", its line
+    lost. A launch file is read once a run."""
+    from urdftool.description import launch_python
+
+    monkeypatch.setattr(launch_python, "MAX_REPOSITORY_CHARACTERS", 20_000)
+    folder = _folder(tmp_path, "# " + "y" * 8_000 + "\n" + GOOD.format(extra="\n\nif x:\nfoo("))
+    for index in range(3):  # read after it (sorted), spending the room
+        (folder / "launch" / f"z{index}.launch.py").write_text(
+            "# " + "z" * 5_000 + "\n" + GOOD.format(extra=""))
+    found = [f for f in _checked(folder) if f.code == "U620"
+             and f.location.file.endswith("pan.launch.py")]
+    assert [(f.location.line, "not valid Python" in f.message) for f in found] == [(9, True)], \
+        [f.message for f in found]

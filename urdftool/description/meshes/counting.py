@@ -243,33 +243,24 @@ def gltf_scene_nodes(header: dict) -> list[tuple[int, dict, int]]:
 
 
 MAX_PIECES = 10_000  # meshes trimesh builds one file from and joins (~0.1 ms each a load)
-# a text mesh's pieces, an OBJ's materials and an ASCII STL's solids, cost more: an OBJ's are
-# each named by a search over the names before it (no material library is read, so all share
-# the file's name): 1,000 take about a second a load, 5,000 six, 20,000 sixty; an ASCII STL's
-# solids are parsed one by one, about a millisecond each
+# an ASCII STL's solids cost more: parsed one by one, about a millisecond each (an OBJ's
+# materials, which trimesh made a mesh of each, are read as one mesh: reading._without_materials)
 MAX_TEXT_PIECES = 1_000
 
 
 def scene_problem(path: Path, data: bytes) -> str | None:
     """Why trimesh is not to build a file's scene, or None, the one judge of how many meshes it
     makes of one file: a glTF's primitives, once for each node placing them
-    (:data:`MAX_PIECES`); an OBJ's materials and an ASCII STL's solids
-    (:data:`MAX_TEXT_PIECES`: trimesh makes a mesh of each ``usemtl`` name and, with no
-    material library read, names each with a search over the names before it: 20,000 took
-    51 s; it reads each ``solid ... endsolid`` as a mesh of its own: 20,000 took 21 s). A
+    (:data:`MAX_PIECES`); an ASCII STL's solids (:data:`MAX_TEXT_PIECES`: trimesh reads each
+    ``solid ... endsolid`` as a mesh of its own: 20,000 took 21 s). An OBJ is one mesh to it:
+    its materials are left out before it reads the file
+    (:func:`~urdftool.description.meshes.reading._without_materials`). A
     glTF scene is held to a COLLADA scene's bounds too:
     :data:`~urdftool.description.collada.MAX_NODE_VISITS` nodes,
     :data:`~urdftool.description.collada.MAX_NODE_DEPTH` deep (trimesh walks a node's parents
     for each node: a 60 KB GLB of 20,000 nodes each the child of the one before took 4.7 s to
     load, three loads a check; a GLB of 99,000 nodes each placing a triangle took 34 s)."""
     suffix = path.suffix.lower()
-    if suffix == ".obj":
-        # (the NULs of UTF-16 or UTF-32 left out: trimesh reads a file so encoded as text too)
-        materials = len({name.strip() for name in _OBJ_MATERIAL.findall(data.replace(b"\0", b""))})
-        if materials > MAX_TEXT_PIECES:
-            return (f"it names {materials} materials (usemtl), each a mesh of its own to build "
-                    f"and join, over {MAX_TEXT_PIECES}")
-        return None
     if suffix == ".stl":
         from urdftool.description.mesh_arrays import binary_stl
 
@@ -298,10 +289,6 @@ def scene_problem(path: Path, data: bytes) -> str | None:
         return (f"its nodes place {pieces} primitives, each a mesh of its own to build and "
                 f"join, over {MAX_PIECES}")
     return None
-
-
-# a material an OBJ uses, as trimesh splits the faces at it: "usemtl NAME" anywhere in a line
-_OBJ_MATERIAL = re.compile(rb"usemtl ([^\n]*)")
 
 
 def _gltf_triangles(path: Path, data: bytes) -> int | None:

@@ -342,10 +342,35 @@ def _trimesh_load(data: bytes, file_type: str, process: bool, path: Path, limits
     them (a GLB, always read again)."""
     import trimesh
 
+    if file_type == "obj":
+        data = _without_materials(data)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
         return trimesh.load(io.BytesIO(data), file_type=file_type, force="mesh", process=process,
                             resolver=_geometry_resolver(path, limits))
+
+
+# a material an OBJ uses, as trimesh splits the faces at it: "usemtl NAME" anywhere in a line
+_OBJ_MATERIAL = re.compile(r"usemtl [^\n]*")
+
+
+def _without_materials(data: bytes) -> bytes:
+    """An OBJ's text as trimesh decodes it (``util.decode_text``: UTF-8, else the encoding it
+    detects), its ``usemtl`` statements left out, in UTF-8. trimesh makes a mesh of each
+    material's faces and joins them: in ``exchange/obj.py``'s ``load_obj`` each piece is named
+    by ``util.unique_name`` without the memo of counts its glTF and COLLADA readers give it
+    (the k-th piece named alike, as every piece is when no material file is read, tries k
+    names: 10,000 materials were 50 million ``str.format`` calls, 13 s a load) and masks the
+    file's whole vertex array (``mask_v``, ``inverse``: pieces times vertices, 999 materials
+    over 4 million vertices took 18 s a check). urdftool reads no material file (geometry
+    only), so the pieces are one mesh's faces grouped by a name nothing reads: read as one, in
+    the file's order, the same triangles."""
+    if b"usemtl" not in data and b"\0" not in data:
+        return data  # (UTF-16 and UTF-32 hold NULs between the letters)
+    from trimesh.util import decode_text
+
+    text = decode_text(data)
+    return _OBJ_MATERIAL.sub("", text).encode("utf-8") if "usemtl " in text else data
 
 
 def _read_mesh(path: Path, uri: str, limits: MeshLimits):
