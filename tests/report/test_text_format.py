@@ -107,6 +107,37 @@ def test_a_macro_line_expanded_by_several_calls_is_one_place():
     assert "expanded from 2 macro calls at robot.xacro:29, 33" in text
 
 
+def test_the_summary_says_on_how_many_lines_the_findings_are_in_every_format():
+    """Two robots expanding one macro line twice each are four findings of one line to change:
+    the summary said "4 warnings" (and Shadow's hands "299 warnings" over 64 lines), a count
+    no report line showed. Each severity says its lines when some are fewer than its
+    findings, the same in text, github and json."""
+    def macro(robot: str, line: int, call: int) -> Finding:
+        return Finding("U022", "no-effect", Severity.WARNING, "<dynamics> attribute 'K' has "
+                       "no effect", Location("arm.xacro", line, (Location(robot, call),)))
+
+    error = Finding("U204", "inverted-limits", Severity.ERROR, "joint 'j': lower 1 is above "
+                    "upper -1; swap them", Location("a.urdf.xacro", 7))
+    results = [FileResult("a.urdf.xacro", [error, macro("a.urdf.xacro", 36, 3),
+                                           macro("a.urdf.xacro", 36, 4)]),
+               FileResult("b.urdf.xacro", [macro("b.urdf.xacro", 36, 3),
+                                           macro("b.urdf.xacro", 51, 3)])]
+    assert _text(results).splitlines()[-1] == \
+        "2 files checked: 1 error on 1 line, 4 warnings on 2 lines, 0 notes"
+    stream = io.StringIO()
+    render("github", results, stream)
+    assert stream.getvalue().splitlines()[-1] == \
+        "urdftool: 2 files, 1 error on 1 line, 4 warnings on 2 lines, 0 notes"
+    stream = io.StringIO()
+    render("json", results, stream)
+    assert json.loads(stream.getvalue())["summary"] == {
+        "files": 2, "errors": 1, "warnings": 4, "notes": 0,
+        "lines": {"errors": 1, "warnings": 2, "notes": 0}}
+    # one finding a line: the counts alone, as before
+    assert _text([FileResult("a.urdf.xacro", [error])]).splitlines()[-1] == \
+        "1 file checked: 1 error, 0 warnings, 0 notes"
+
+
 def test_call_sites_are_listed_in_reading_order():
     # KapiBara's five lasers, sorted by name, were "lasers_joints.xacro:94, 92, 93, 95, 96"
     findings = [Finding("U615", "sensor-unknown-link", Severity.ERROR, f"'{name}' is not a link",

@@ -33,7 +33,7 @@ from typing import Callable
 from urdftool.diagnostics import Severity, display_path
 from urdftool.errors import LISTED, first_listed, fitting
 from urdftool.report.escape import text as escaped
-from urdftool.report.summary import STYLES, Summary, counted, via_text
+from urdftool.report.summary import STYLES, Summary, counted, lines_of, tallies, via_text
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 Notes = bool | Callable[[object], bool]  # for all results, or per result
@@ -63,8 +63,10 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
     """
     out: list[Line] = []
     hidden, unseen = 0, 0  # (notes not shown; fixes among them)
+    noted = []  # the notes shown
     for result in results:
         shown = _shown(result, notes)
+        noted += [f for f in shown if f.severity is Severity.INFO]
         if len(shown) < len(result.findings):
             kept = {id(f) for f in shown}
             left = [f for f in result.findings if id(f) not in kept]
@@ -82,7 +84,7 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
             out.append([])
     if quiet:
         return [_escaped(line) for line in out]
-    out.append(_summary(results, hidden))
+    out.append(_summary(results, hidden, noted))
     fixable = [f.fix.safe for result in results for f in result.findings if f.fix is not None]
     if fixable:
         safe, unsafe = fixable.count(True), fixable.count(False)
@@ -103,12 +105,18 @@ def _shown(result, notes: Notes) -> list:
     return [f for f in result.findings if f.severity is not Severity.INFO or id(f) in kept]
 
 
-def _summary(results, hidden: int) -> Line:
+def _summary(results, hidden: int, noted: list) -> Line:
+    """The last line: the files checked and their findings by severity, each with the lines
+    of the files it is on when fewer (:meth:`Summary.counts`: a macro line in many robots is
+    one line to change); the notes the report shows (``noted``), and how many it left out
+    (``hidden``)."""
     summary = Summary.of(results)
     infos = summary.infos - hidden
     style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
-    counts = [counted(summary.errors, "error"), counted(summary.warnings, "warning")]
-    counts += [counted(infos, "note")] if infos or not hidden else []
+    counts = tallies([(summary.errors, summary.error_lines, "error"),
+                      (summary.warnings, summary.warning_lines, "warning"),
+                      (infos, lines_of(noted), "note")])
+    counts = counts if infos or not hidden else counts[:2]
     verdict = ", ".join(counts) if summary.errors or summary.warnings or infos \
         else "no problems found" if summary.files else "nothing to check"
     if hidden:
