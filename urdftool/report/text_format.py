@@ -430,13 +430,43 @@ def _also(group: list, named: list | None = None) -> str:
         for h in quoted if h != i)}  # (of two that hold each other, the longer, else the first)
     differ = [i for i in differ if i not in held]
     at, with_it = differ[0], [i for i in differ[1:] if first[i][:2] != "</" and first[i][0] in "<'"]
-    mine = (first[at], *(first[i] for i in with_it))  # (a link's second mesh is another's)
-    others = [said[0] + (f" ({', '.join(said[1:])})" if with_it else "") for said in
-              dict.fromkeys((names[at], *(names[i] for i in with_it)) for names in named)
-              if said != mine]
+    places = (at, *with_it)
+
+    def said(folders: list[str]) -> list[str]:
+        mine = _in_folders(first, places, folders)  # (a link's second mesh is another's)
+        return [names[0] + (f" ({', '.join(names[1:])})" if with_it else "") for names in
+                dict.fromkeys(_in_folders(names, places, folders) for names in named)
+                if names != mine]
+
+    others = said([""] * len(places))
+    if fitting(others, ALSO_WIDTH) < len(others):  # (cut: the folder they share said once)
+        others = said([_shared_folder([names[i] for names in named]) for i in places])
     if len(group) > _NAMES_READ:  # (how many in all is not known)
         return f"; also {', '.join(others[:fitting(others, ALSO_WIDTH)])}, ..."
     return f"; also {first_listed(others, len(others), width=ALSO_WIDTH)}"
+
+
+_SHARED_FOLDER = 16  # [characters] a folder the names of an "also" list share, said once
+
+
+def _shared_folder(names: list[str]) -> str:
+    """The folder the quoted paths ``names`` are all in (``'package://ur_description/meshes/
+    ur10/visual/``) when it is longer than :data:`_SHARED_FOLDER` characters, else "": an
+    "also" list too long for its width writes it ``...`` (:func:`_in_folders`), the group's
+    first message giving it in full (Shadow's arm named six meshes of one package folder, its
+    45 characters each time: three within the list's width, then "... (6 in all)")."""
+    if not all(name[:1] == "'" and "/" in name for name in names):
+        return ""
+    shared = os.path.commonprefix(names)
+    shared = shared[:shared.rfind("/") + 1]
+    return shared if len(shared) > _SHARED_FOLDER else ""
+
+
+def _in_folders(names: tuple, places: tuple, folders: list[str]) -> tuple:
+    """The names at ``places`` of ``names``, each with the folder of its place (``folders``,
+    :func:`_shared_folder`) written ``...``."""
+    return tuple("'..." + names[i][len(folder) - 1:] if folder else names[i]
+                 for i, folder in zip(places, folders))
 
 
 def _holds(named: list[tuple], holder: int, i: int) -> bool:
