@@ -261,7 +261,7 @@ def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom
             _prefix_ros1_tags(session, doc)
         return doc
     except expat.ExpatError as error:
-        problem = malformed(data, expat.ErrorString(error.code), error.lineno)
+        problem = malformed(data, expat.ErrorString(error.code), error.lineno, error.offset + 1)
     except XmlProblem as refused:
         problem = refused
     except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
