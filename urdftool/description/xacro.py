@@ -441,7 +441,11 @@ def _yaml_opener(session: _Session):
     """``open`` for xacro.load_yaml: allowed roots, regular files, the size limit, UTF-8."""
 
     def open_yaml(filename, *args, **kwargs):
-        filename = _installed(session, filename)
+        if not os.path.basename(str(filename)).strip():  # ('' is the macro's folder to xacro)
+            raise _Unreadable(errno.EISDIR, "load_yaml was given no file name" + (
+                f" ('{display_path(filename)}', a folder: a file name or argument left empty?)"
+                if str(filename).strip() else ""))
+        spec, filename = filename, _installed(session, filename)
         session.check_inside(filename, "YAML file")
         try:
             data = session.read_file(filename, "yaml")
@@ -449,7 +453,9 @@ def _yaml_opener(session: _Session):
             unsure = _unsure(session, filename, error, "YAML file")
             if unsure:
                 raise unsure from None
-            raise
+            raise _Unreadable(error.errno, _not_read(
+                error, filename, f"YAML file '{display_path(spec)}'",
+                written=display_path(spec))) from None
         session.paths.append(filename)
         text = data.decode("utf-8", errors="replace")
         xacro_sandbox.refuse_yaml_bomb(text, display_path(filename))
@@ -864,7 +870,7 @@ def _not_read(error: OSError, filename: str, subject: str, where: str = "",
     (the path as the file writes it) already says it; else "SUBJECT: REASON: PATH"."""
     shown = display_path(filename)
     if error.errno != errno.ENOENT:
-        return f"{subject}: {error.strerror}: {shown}"
+        return f"{subject}: {error.strerror}" + ("" if written == shown else f": {shown}")
     return f"{subject} not found{where}" + ("" if written == shown else f" (looked at {shown})")
 
 
