@@ -207,6 +207,49 @@ def test_zbuffer_resolves_depth_per_pixel_and_keys_give_the_drawing_order():
     assert drawn_last[1, 1] == 0  # as painted, first key largest: the first triangle
 
 
+def _every_pixel(corners, depths, size: int) -> np.ndarray:
+    """The depth buffer the plain way: every triangle tested at every pixel centre, the
+    nearest kept, the first listed of those as near (the rasteriser's inside test)."""
+    shown = np.full((size, size), -1)
+    best = np.full((size, size), -np.inf)
+    cy, cx = np.mgrid[0:size, 0:size] + 0.5
+    for i, ((a, b, c), d) in enumerate(zip(corners, depths)):
+        area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+        if not abs(area) > 1e-12:
+            continue
+        wa = ((c[0] - b[0]) * (cy - b[1]) - (c[1] - b[1]) * (cx - b[0])) * (1.0 / area)
+        wb = ((a[0] - c[0]) * (cy - c[1]) - (a[1] - c[1]) * (cx - c[0])) * (1.0 / area)
+        wc = 1.0 - wa - wb
+        depth = wa * d[0] + wb * d[1] + wc * d[2]
+        inside = (wa >= -1e-9) & (wb >= -1e-9) & (wc >= -1e-9) & (depth > best)
+        best[inside], shown[inside] = depth[inside], i
+    return shown
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_rasteriser_tests_each_triangles_own_pixels_and_finds_what_every_pixel_shows(seed):
+    """attack27's 2,000 overlapping triangles across a 600 x 600 picture: each triangle tested
+    every pixel of its box rounded up to powers of two (7 times the pixels the triangles
+    cover), then the samples were sorted by pixel and depth (three quarters of what was
+    left): 15.7 s for a PNG. Each triangle's own pixels are tested, row by row, and each
+    pixel keeps its nearest without a sort: what every pixel shows is as before (against
+    every triangle tested at every pixel; edges through pixel centres, thin and tiny
+    triangles among them), and the tests are the pixels covered, a row's two ends more."""
+    draw = np.random.default_rng(seed)
+    size = 40
+    corners = draw.uniform(-10, size + 10, (60, 3, 2))
+    corners[:10] = np.round(corners[:10])  # (corners on pixel edges: centres on some sides)
+    corners[10:20, 1] = corners[10:20, 0] + draw.uniform(-0.3, 0.3, (10, 2))  # thin ones
+    corners[20:25] = corners[20:25, :1] + draw.uniform(0, 0.8, (5, 3, 2))  # under a pixel
+    depths = draw.uniform(0, 1, (60, 3))
+    depths[30:40] = depths[20:30]  # (ties: the first listed wins)
+    corners[30:40] = corners[20:30]
+    assert (picture.zbuffer(corners, depths, size, size) ==
+            _every_pixel(corners, depths, size)).all()
+    big = np.array([[(0.2, 0.2), (600, 0.2), (0.2, 600)]])  # half of a 600 x 600 picture
+    assert picture.raster_tests(big, 600, 600) <= 600 * 601 / 2 + 2 * 600
+
+
 def _svg_pixels(text: str, size: int) -> np.ndarray:
     """What a renderer shows at each pixel centre for the polygons and rectangles of an SVG
     picture, in the order written (later over earlier): enough to check what it draws."""
@@ -304,9 +347,9 @@ def _counting_tests(monkeypatch) -> list[int]:
     tested = []
     cover = picture._cover
 
-    def counted(chunk, box, *rest):
-        tested.append(len(chunk) * box[0] * box[1])
-        return cover(chunk, box, *rest)
+    def counted(spans, first, last, *rest):
+        tested.append(int(spans.counts[first:last].sum()))
+        return cover(spans, first, last, *rest)
 
     monkeypatch.setattr(picture, "_cover", counted)
     return tested

@@ -8,7 +8,9 @@ anyway).
 
 Which triangle a pixel shows is decided by a depth buffer (:func:`zbuffer`, numpy): the nearest
 at the pixel's centre, so that parts which cut into each other meet along their intersection
-(drawing whole triangles far to near, the painter's order, gave saw-tooth edges there). PNG
+(drawing whole triangles far to near, the painter's order, gave saw-tooth edges there); its
+work is linear in the pixels the triangles cover (each triangle's own pixels, row by row, and
+each pixel's nearest kept without a sort). PNG
 is that buffer's colours. SVG is vector: the triangles that show anywhere, outlined in their
 own colour (no seams where a renderer's anti-aliasing leaves background between them), in an
 order taken from the depth buffer (a triangle after every triangle it hides), and, where no
@@ -40,11 +42,12 @@ OLD, NEW = (0.15, 0.4, 0.85), (0.95, 0.45, 0.05)  # the two sides of a compariso
 AMBIENT = 0.35
 MARGIN = 0.06  # of the picture's size, around the robot
 SVG_MIN_AREA = 0.05  # [px^2] triangles smaller than this are left out of an SVG
-# [pixel tests] of the triangles an SVG layer draws (each tests every pixel of its box of
-# powers of two: 3 passes of the rasteriser order them), past which the layer is drawn as the
-# depth buffer's pixels instead, in one pass as a PNG is (said in the picture and by the
-# command): 2,000 triangles of a mesh overlapping across a 600 x 600 picture (5.6e7 tests, a
-# depth of 50) took 58 s, past the 60 s budget; a robot's meshes at 600 x 600 test ~5e5
+# [pixel tests] of the triangles an SVG layer draws (each tests its own pixels, row by row:
+# 3 passes of the rasteriser order them), past which the layer is drawn as the depth buffer's
+# pixels instead, in one pass as a PNG is (said in the picture and by the command): 2,000
+# triangles of a mesh overlapping across a 600 x 600 picture took 58 s, past the 60 s budget,
+# when each tested its box of powers of two; tested so, they are 1e7 tests (852 of them show)
+# and ordered in about 10 s, 10,000 of them 2.8e7 in about 26 s; a robot's meshes test ~5e5
 SVG_ORDER_TESTS = 2 ** 25
 
 
@@ -282,6 +285,10 @@ def zbuffer(corners, depths, width: int, height: int, keys=None, covered=None):
     A pixel centre on an edge two triangles share is covered by both (no cracks); on a tie
     the triangle listed first wins. ``covered``: called chunk by chunk with the
     ``(pixels, triangles)`` of every pixel centre each triangle covers, hidden or not.
+
+    The pixels tested are each triangle's own, row by row (:func:`_spans`), not its box: a
+    large triangle tested every pixel of its box rounded up to powers of two, some four times
+    its area (2,000 overlapping triangles of a mesh across a 600 x 600 picture: 15.7 s).
     """
     import numpy as np
 
@@ -290,6 +297,34 @@ def zbuffer(corners, depths, width: int, height: int, keys=None, covered=None):
     index = np.full(width * height, -1, dtype=np.int64)
     if n == 0:
         return index.reshape(height, width)
+    spans = _spans(corners, width, height)
+    for first, last in _chunks(spans.counts):
+        _cover(spans, first, last, corners, depths, width, keys, buffer, index, covered)
+    return index.reshape(height, width)
+
+
+_RASTER_CHUNK = 1 << 19  # pixel tests at a time [samples]
+_EDGE = -1e-9  # a pixel centre this far outside an edge (in barycentric weight) is inside
+
+
+class _Spans:
+    """The pixels whose centres a rasteriser tests for triangles: for each (triangle, row)
+    pair, the triangle's row ``rows`` and its first column ``starts`` and how many ``counts``
+    (one more on each side than the row's crossing of the triangle, so that no centre the
+    test takes is left out by the rounding of the crossing), and each triangle's signed
+    doubled ``area``."""
+
+    def __init__(self, triangles, rows, starts, counts, area):
+        self.triangles, self.rows, self.starts, self.counts, self.area = \
+            triangles, rows, starts, counts, area
+
+
+def _spans(corners, width: int, height: int) -> _Spans:
+    """Each triangle's pixels row by row: where the row of pixel centres crosses it, as the
+    inside test (:func:`_cover`) decides, widened by a pixel on each side and kept within the
+    triangle's box of the picture. A triangle of no area or wholly outside has none."""
+    import numpy as np
+
     a, b, c = corners[:, 0], corners[:, 1], corners[:, 2]
     area = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
     low = np.floor(corners.min(axis=1) - 0.5) + 1  # the first pixel whose centre may be inside
@@ -297,80 +332,115 @@ def zbuffer(corners, depths, width: int, height: int, keys=None, covered=None):
     low = np.maximum(low, 0).astype(np.int64)
     high = np.minimum(high, [width - 1, height - 1]).astype(np.int64)
     span = high - low + 1
-    usable = (np.abs(area) > 1e-12) & (span > 0).all(axis=1)
-    # triangles in groups of one box size (powers of two across and down), tested together
-    size = np.ones((n, 2), dtype=np.int64)
-    size[usable] = 1 << np.ceil(np.log2(span[usable])).astype(np.int64)
-    kinds = size[:, 0] * (1 << 32) + size[:, 1]
-    for kind in np.unique(kinds[usable]):
-        members = np.flatnonzero(usable & (kinds == kind))
-        across, down = int(kind >> 32), int(kind & 0xFFFFFFFF)
-        step = max(1, _RASTER_CHUNK // (across * down))
-        for first in range(0, len(members), step):
-            chunk = members[first:first + step]
-            _cover(chunk, (across, down), corners, depths, area, low, high, width, keys,
-                   buffer, index, covered)
-    return index.reshape(height, width)
+    usable = np.flatnonzero(np.isfinite(area) & (np.abs(area) > 1e-12) & (span > 0).all(axis=1))
+    heights = span[usable, 1]
+    triangles = np.repeat(usable, heights)
+    rows = np.repeat(low[usable, 1], heights) + _ramps(heights)
+    # each weight along the row, w = slope * cx + w0 (_cover's weights at cy, as cx varies)
+    cy = rows + 0.5
+    inverse = 1.0 / area[triangles]
+    ta, tb, tc = (corners[triangles, i] for i in range(3))
+    slope_a = -(tc[:, 1] - tb[:, 1]) * inverse
+    slope_b = -(ta[:, 1] - tc[:, 1]) * inverse
+    w0_a = ((tc[:, 0] - tb[:, 0]) * (cy - tb[:, 1]) + (tc[:, 1] - tb[:, 1]) * tb[:, 0]) * inverse
+    w0_b = ((ta[:, 0] - tc[:, 0]) * (cy - tc[:, 1]) + (ta[:, 1] - tc[:, 1]) * tc[:, 0]) * inverse
+    lo = np.full(len(rows), -np.inf)
+    hi = np.full(len(rows), np.inf)
+    for slope, w0 in ((slope_a, w0_a), (slope_b, w0_b), (-slope_a - slope_b, 1.0 - w0_a - w0_b)):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            bound = (_EDGE - w0) / slope
+        lo = np.where(slope > 0, np.maximum(lo, bound), lo)
+        hi = np.where(slope < 0, np.minimum(hi, bound), hi)
+        hi = np.where((slope == 0) & (w0 < _EDGE), -np.inf, hi)  # (a row beside an edge)
+    first = np.ceil(np.clip(lo, -1.0, width + 1.0) - 0.5) - 1  # (centres x + 0.5 in [lo, hi])
+    last = np.floor(np.clip(hi, -2.0, width + 1.0) - 0.5) + 1
+    first = np.maximum(first, low[triangles, 0]).astype(np.int64)
+    last = np.minimum(last, high[triangles, 0]).astype(np.int64)
+    counts = np.maximum(last - first + 1, 0)
+    return _Spans(triangles, rows, first, counts, area)
 
 
-_RASTER_CHUNK = 1 << 20  # pixel tests at a time [samples]
+def _ramps(counts):
+    """0, 1, ... count - 1 for each of ``counts``, one after another."""
+    import numpy as np
+
+    return np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
+
+
+def _chunks(counts) -> list[tuple[int, int]]:
+    """(first, last) ranges of the pairs whose pixels (``counts`` each) are tested together:
+    about :data:`_RASTER_CHUNK` at a time, a pair at least."""
+    import numpy as np
+
+    ends = np.cumsum(counts)
+    chunks, first = [], 0
+    while first < len(counts):
+        done = ends[first - 1] if first else 0
+        last = max(int(np.searchsorted(ends, done + _RASTER_CHUNK, side="right")), first + 1)
+        chunks.append((first, last))
+        first = last
+    return chunks
 
 
 def raster_tests(corners, width: int, height: int) -> int:
     """How many pixel centres :func:`zbuffer` tests for the triangles ``corners`` ``[n, 3,
-    2]``: each its box of the picture, rounded up to powers of two across and down."""
-    import numpy as np
-
+    2]``: each its own pixels, row by row (:func:`_spans`)."""
     if not len(corners):
         return 0
-    low = np.maximum(np.floor(corners.min(axis=1) - 0.5) + 1, 0)
-    high = np.minimum(np.floor(corners.max(axis=1) - 0.5), [width - 1, height - 1])
-    span = high - low + 1
-    usable = (span > 0).all(axis=1)
-    return int((2 ** np.ceil(np.log2(span[usable]))).prod(axis=1).sum())
+    return int(_spans(corners, width, height).counts.sum())
 
 
-def _cover(chunk, box: tuple[int, int], corners, depths, area, low, high, width: int, keys,
-           buffer, index, covered) -> None:
-    """Rasterise the triangles ``chunk`` (each fits a ``box`` (across, down) of pixels) into
-    the depth ``buffer`` and the ``index`` of the triangle each pixel shows."""
+def _cover(spans: _Spans, first: int, last: int, corners, depths, width: int, keys, buffer,
+           index, covered) -> None:
+    """Rasterise the pixels of the pairs ``first:last`` of ``spans`` into the depth ``buffer``
+    and the ``index`` of the triangle each pixel shows. What holds along a row is taken once
+    per pair and repeated for its pixels."""
     import numpy as np
 
-    px = low[chunk, 0][:, None, None] + np.arange(box[0])[None, None, :]
-    py = low[chunk, 1][:, None, None] + np.arange(box[1])[None, :, None]
-    valid = (px <= high[chunk, 0][:, None, None]) & (py <= high[chunk, 1][:, None, None])
-    cx, cy = px + 0.5, py + 0.5
-    a, b, c = (corners[chunk, i][:, :, None, None] for i in range(3))
-    inverse = 1.0 / area[chunk][:, None, None]
+    triangles, counts = spans.triangles[first:last], spans.counts[first:last]
+    cy = spans.rows[first:last] + 0.5
+    a, b, c = (corners[triangles, i] for i in range(3))
+    px = np.repeat(spans.starts[first:last], counts)
+    px += _ramps(counts)
+    cx = px + 0.5
+    inverse = np.repeat(1.0 / spans.area[triangles], counts)
+
+    def weight(one, two):
+        """((two - one) across (cy - one's y) - (two - one) down (cx - one's x)) / area, as
+        the row's terms repeated for its pixels, in place (the chunk's largest arrays)."""
+        term = cx - np.repeat(one[:, 0], counts)
+        term *= np.repeat(two[:, 1] - one[:, 1], counts)
+        weight = np.repeat((two[:, 0] - one[:, 0]) * (cy - one[:, 1]), counts)
+        weight -= term
+        weight *= inverse
+        return weight
+
     # barycentric weights of the pixel centre: of a, of b, of c
-    wa = ((c[:, 0] - b[:, 0]) * (cy - b[:, 1]) - (c[:, 1] - b[:, 1]) * (cx - b[:, 0])) * inverse
-    wb = ((a[:, 0] - c[:, 0]) * (cy - c[:, 1]) - (a[:, 1] - c[:, 1]) * (cx - c[:, 0])) * inverse
+    wa, wb = weight(b, c), weight(c, a)
     wc = 1.0 - wa - wb
-    tolerance = -1e-9
-    inside = valid & (wa >= tolerance) & (wb >= tolerance) & (wc >= tolerance)
-    which, rows, columns = np.nonzero(inside)
-    if not len(which):
+    inside = np.flatnonzero((wa >= _EDGE) & (wb >= _EDGE) & (wc >= _EDGE))
+    if not len(inside):
         return
-    triangles = chunk[which]
+    pair = np.repeat(np.arange(len(counts)), counts)[inside]
+    triangles = triangles[pair]
     if keys is None:
         d = depths[triangles]
-        depth = (wa[which, rows, columns] * d[:, 0] + wb[which, rows, columns] * d[:, 1]
-                 + wc[which, rows, columns] * d[:, 2])
+        depth = wa[inside] * d[:, 0] + wb[inside] * d[:, 1] + wc[inside] * d[:, 2]
     else:
         depth = keys[triangles].astype(float)
-    pixel = py[which, rows, 0] * width + px[which, 0, columns]
+    pixel = spans.rows[first:last][pair] * width + px[inside]
     if covered is not None:
         covered(pixel, triangles)
-    # the nearest sample per pixel within the chunk (first listed on a tie), then the buffer
-    order = np.lexsort((-triangles, depth, pixel))
-    pixel, depth, triangles = pixel[order], depth[order], triangles[order]
-    last = np.r_[pixel[1:] != pixel[:-1], True]
-    pixel, depth, triangles = pixel[last], depth[last], triangles[last]
-    nearer = depth > buffer[pixel]
-    tie = (depth == buffer[pixel]) & (triangles < index[pixel])
-    better = nearer | tie
-    buffer[pixel[better]] = depth[better]
-    index[pixel[better]] = triangles[better]
+    # the nearest sample per pixel, the first listed of those as near: the buffer takes the
+    # nearest (fmax: a depth that is not a number never wins), then where it came nearer here
+    # the pixel's triangle is forgotten and the least of those as near as it is kept (a sort
+    # of the samples by pixel and depth was three quarters of the time)
+    before = buffer[pixel]
+    np.fmax.at(buffer, pixel, depth)
+    now = buffer[pixel]
+    nearest = depth == now
+    index[pixel[nearest & (now > before)]] = len(corners)  # (more than any triangle)
+    np.minimum.at(index, pixel[nearest], triangles[nearest])
 
 
 def _colour_image(drawn: _Drawn, shown):
