@@ -16,7 +16,8 @@ def test_bundled_robots_check_clean(run_cli):
     result = run_cli("check", ROBOTS, "--format", "json")
     data = json.loads(result.stdout)
     assert result.exit_code == 0, data
-    assert data["summary"] == {"files": 3, "errors": 0, "warnings": 0, "notes": 0}
+    assert data["summary"] == {"files": 3, "errors": 0, "warnings": 0, "notes": 0,
+                               "lines": {"errors": 0, "warnings": 0, "notes": 0}}
     assert data["diagnostics"] == []
 
 

@@ -496,3 +496,31 @@ def test_macro_calls_one_after_another_expand_in_time_linear_in_their_number(tmp
         names, looked = expand(2000, comment)
         assert names == ["base"] + [f"l{i}" for i in range(2000)]
         assert looked < 100 * 2000, looked  # the square: over 2 * 10^6
+
+
+def test_a_yaml_file_load_yaml_cannot_read_is_said_without_pythons_errno(tmp_path):
+    """motoman's es165_macro.xacro calls load_yaml(joint_velocities_file), its argument empty
+    by default: xacro reads the macro's folder, and the message was Python's "[Errno 21] not a
+    regular file: 'motoman_es_support/urdf'"; a file missing said "[Errno 2] No such file or
+    directory: 'x.yaml'". Each is said as an include's is: what was asked, what is wrong."""
+    def failure(expression: str) -> str:
+        (tmp_path / "robot.xacro").write_text(
+            '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+            '<xacro:arg name="f" default=""/>'
+            f'<xacro:property name="v" value="${{xacro.load_yaml({expression})}}"/>'
+            '<link name="a"><visual><geometry><box size="${v[\'x\']} 1 1"/></geometry></visual>'
+            '</link></robot>')
+        with pytest.raises(LoadError) as caught:
+            load(str(tmp_path / "robot.xacro"))
+        assert "Errno" not in caught.value.message, caught.value.message
+        return caught.value.message
+
+    (tmp_path / "config").mkdir()
+    assert failure("'config/'").startswith(
+        f"load_yaml was given no file name ('{tmp_path / 'config'}', a folder: a file name or "
+        "argument left empty?) when evaluating expression"), failure("'config/'")
+    assert failure("'config'").startswith(
+        f"YAML file '{tmp_path / 'config'}': a folder, not a regular file when evaluating")
+    assert failure("'missing.yaml'").startswith(
+        f"YAML file '{tmp_path / 'missing.yaml'}' not found when evaluating")
+    assert failure("'$(arg f)'").startswith("load_yaml was given no file name")

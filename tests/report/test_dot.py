@@ -137,3 +137,28 @@ def test_links_beside_the_tree_are_drawn_apart_as_the_warning_says(run_cli, tmp_
         '"r" -> "x" [label="j0\\nfixed"];'
     assert "2 links beside the tree, which no joint from the root reaches, drawn dashed, " \
         "apart from the tree" in result.stderr and "left out" not in result.stderr
+
+
+def test_each_root_of_a_robot_of_several_is_labelled_so(tmp_path):
+    """elephantrobotics' ultraArm_p340_aiki.urdf: a link 'env' no joint reaches beside the arm
+    from 'base' (U108, which urdfdom refuses). graph drew both parts as any links, and only the
+    finding's tooltip (which a PNG has not) said that 'base' was a second root; 'env', the part
+    apart, looked like a link of the robot. Each root is labelled with its place among them,
+    a tooltip saying why; a robot of one root is drawn as before."""
+    from urdftool.description.load import load
+    from urdftool.report.dot import to_dot
+
+    def load_text(text: str):
+        (tmp_path / "r.urdf").write_text(text)
+        return load(tmp_path / "r.urdf")
+
+    robot = load_text('<robot name="r"><link name="env"/><link name="base"/><link name="a"/>'
+                      '<joint name="j" type="fixed"><parent link="base"/><child link="a"/>'
+                      '</joint></robot>')
+    dot = to_dot(robot)
+    assert 'label="env\\n(root 1 of 2)"' in _line(dot, '"env" [')
+    assert 'label="base\\n(root 2 of 2)"' in _line(dot, '"base" [')
+    assert "urdfdom refuses" in _line(dot, '"base" [') and _line(dot, '"a"') == '"a";'
+    one = load_text('<robot name="r"><link name="base"/><link name="a"/><joint name="j" '
+                    'type="fixed"><parent link="base"/><child link="a"/></joint></robot>')
+    assert _line(to_dot(one), '"base"') == '"base";'

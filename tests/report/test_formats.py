@@ -44,7 +44,8 @@ def test_json_is_exactly_the_documented_shape():
              "name": "axis-not-unit", "severity": "warning", "message": "axis: length 2,\nnot 1",
              "via": [{"file": "a.urdf", "line": 9, "column": None}]},
         ],
-        "summary": {"files": 2, "errors": 1, "warnings": 1, "notes": 0},
+        "summary": {"files": 2, "errors": 1, "warnings": 1, "notes": 0,
+                    "lines": {"errors": 1, "warnings": 1, "notes": 0}},
     }
 
 

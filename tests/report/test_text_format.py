@@ -107,6 +107,37 @@ def test_a_macro_line_expanded_by_several_calls_is_one_place():
     assert "expanded from 2 macro calls at robot.xacro:29, 33" in text
 
 
+def test_the_summary_says_on_how_many_lines_the_findings_are_in_every_format():
+    """Two robots expanding one macro line twice each are four findings of one line to change:
+    the summary said "4 warnings" (and Shadow's hands "299 warnings" over 64 lines), a count
+    no report line showed. Each severity says its lines when some are fewer than its
+    findings, the same in text, github and json."""
+    def macro(robot: str, line: int, call: int) -> Finding:
+        return Finding("U022", "no-effect", Severity.WARNING, "<dynamics> attribute 'K' has "
+                       "no effect", Location("arm.xacro", line, (Location(robot, call),)))
+
+    error = Finding("U204", "inverted-limits", Severity.ERROR, "joint 'j': lower 1 is above "
+                    "upper -1; swap them", Location("a.urdf.xacro", 7))
+    results = [FileResult("a.urdf.xacro", [error, macro("a.urdf.xacro", 36, 3),
+                                           macro("a.urdf.xacro", 36, 4)]),
+               FileResult("b.urdf.xacro", [macro("b.urdf.xacro", 36, 3),
+                                           macro("b.urdf.xacro", 51, 3)])]
+    assert _text(results).splitlines()[-1] == \
+        "2 files checked: 1 error on 1 line, 4 warnings on 2 lines, 0 notes"
+    stream = io.StringIO()
+    render("github", results, stream)
+    assert stream.getvalue().splitlines()[-1] == \
+        "urdftool: 2 files, 1 error on 1 line, 4 warnings on 2 lines, 0 notes"
+    stream = io.StringIO()
+    render("json", results, stream)
+    assert json.loads(stream.getvalue())["summary"] == {
+        "files": 2, "errors": 1, "warnings": 4, "notes": 0,
+        "lines": {"errors": 1, "warnings": 2, "notes": 0}}
+    # one finding a line: the counts alone, as before
+    assert _text([FileResult("a.urdf.xacro", [error])]).splitlines()[-1] == \
+        "1 file checked: 1 error, 0 warnings, 0 notes"
+
+
 def test_call_sites_are_listed_in_reading_order():
     # KapiBara's five lasers, sorted by name, were "lasers_joints.xacro:94, 92, 93, 95, 96"
     findings = [Finding("U615", "sensor-unknown-link", Severity.ERROR, f"'{name}' is not a link",
@@ -575,14 +606,43 @@ def test_an_also_list_of_long_names_shows_the_first_few_and_how_many():
         return Finding("U407", "mesh-package-not-found", Severity.WARNING, message,
                        Location("nao.urdf", line))
 
-    long = [said(25 + 26 * i, f"link 'Link{i}' <visual>: mesh 'package://nao_meshes/meshes/V40/"
-                              f"Link{i}_long_mesh_name.dae': package 'nao_meshes' not found")
-            for i in range(39)]
+    long = [said(25 + 26 * i, f"link 'Link{i}' <visual>: mesh 'V40_{i}/a_mesh_of_a_long_name_"
+                              "in_a_folder_of_its_own.dae' not found") for i in range(39)]
     [line] = [line for line in _text([FileResult("nao.urdf", long)]).splitlines() if "U407" in line]
     also = line.split("; also ")[1]
-    assert also == ("'package://nao_meshes/meshes/V40/Link1_long_mesh_name.dae', "
-                    "'package://nao_meshes/meshes/V40/Link2_long_mesh_name.dae', "
-                    "'package://nao_meshes/meshes/V40/Link3_long_mesh_name.dae', ... (38 in all)]")
+    assert also == ("'Link1' ('V40_1/a_mesh_of_a_long_name_in_a_folder_of_its_own.dae'), "
+                    "'Link2' ('V40_2/a_mesh_of_a_long_name_in_a_folder_of_its_own.dae'), "
+                    "'Link3' ('V40_3/a_mesh_of_a_long_name_in_a_folder_of_its_own.dae'), "
+                    "... (38 in all)]"), also
+    # a folder they share, the first's written in full, is "..." in the list
+    shared = [said(25 + 26 * i, f"link 'Link{i}' <visual>: mesh 'package://nao_meshes/meshes/V40/"
+                                f"Link{i}_long_mesh_name.dae': package 'nao_meshes' not found")
+              for i in range(39)]
+    [line] = [line for line in _text([FileResult("nao.urdf", shared)]).splitlines()
+              if "U407" in line]
+    assert "mesh 'package://nao_meshes/meshes/V40/Link0_long_mesh_name.dae'" in line
+    assert line.split("; also ")[1] == (
+        "'.../Link1_long_mesh_name.dae', '.../Link2_long_mesh_name.dae', "
+        "'.../Link3_long_mesh_name.dae', '.../Link4_long_mesh_name.dae', "
+        "'.../Link5_long_mesh_name.dae', '.../Link6_long_mesh_name.dae', ... (38 in all)]"), line
+    # with the link each mesh goes with (Shadow's UR10: six links, one package folder)
+    arm = [said(11 + 30 * i, f"link 'ra_{part}_link' <visual>: mesh 'package://ur_description/"
+                             f"meshes/ur10/visual/{mesh}.dae': package 'ur_description' not found")
+           for i, (part, mesh) in enumerate((("base", "base"), ("shoulder", "shoulder"),
+                                              ("upper_arm", "upperarm"), ("forearm", "forearm"),
+                                              ("wrist_1", "wrist1"), ("wrist_2", "wrist2"),
+                                              ("wrist_3", "wrist3")))]
+    [line] = [line for line in _text([FileResult("ur10.urdf", arm)]).splitlines() if "U407" in line]
+    assert line.endswith("also 'ra_shoulder_link' ('.../shoulder.dae'), 'ra_upper_arm_link' "
+                         "('.../upperarm.dae'), 'ra_forearm_link' ('.../forearm.dae'), "
+                         "'ra_wrist_1_link' ('.../wrist1.dae'), 'ra_wrist_2_link' "
+                         "('.../wrist2.dae'), ... (6 in all)]"), line
+    # a list within its width is written as it is
+    [line] = [line for line in _text([FileResult("ur10.urdf", arm[:3])]).splitlines()
+              if "U407" in line]
+    assert line.endswith("also 'ra_shoulder_link' ('package://ur_description/meshes/ur10/visual/"
+                         "shoulder.dae'), 'ra_upper_arm_link' ('package://ur_description/meshes/"
+                         "ur10/visual/upperarm.dae')]"), line
     short = [said(7, f"link 'Link{i}' has no limit") for i in range(39)]
     [line] = [line for line in _text([FileResult("nao.urdf", short)]).splitlines() if "U407" in line]
     assert line.endswith("also 'Link1', 'Link2', 'Link3', 'Link4', 'Link5', 'Link6', 'Link7', "

@@ -91,9 +91,16 @@ def _read_disk(name, limit: int, as_: str) -> bytes:
     return data
 
 
+def _not_regular(info: os.stat_result, name) -> OSError:
+    """The error of a file that is not a regular file, saying what it is when a folder (a
+    path built from an empty argument: motoman's load_yaml('') read the macro's folder)."""
+    what = "a folder, not a regular file" if stat.S_ISDIR(info.st_mode) else "not a regular file"
+    return OSError(21, what, str(name))
+
+
 def _read(name, info, limit: int, as_: str = "file") -> tuple[bytes, os.stat_result]:
     if not stat.S_ISREG(info.st_mode):
-        raise OSError(21, "not a regular file", str(name))
+        raise _not_regular(info, name)
     if info.st_size > limit:
         raise TooLarge(27, f"file is {info.st_size} bytes, over the limit of {limit}", str(name),
                        size=info.st_size)
@@ -102,7 +109,7 @@ def _read(name, info, limit: int, as_: str = "file") -> tuple[bytes, os.stat_res
     try:  # (read from the descriptor: a file object asked the system twice more, fstat and isatty)
         info = os.fstat(descriptor)  # the file read, whatever the name leads to now
         if not stat.S_ISREG(info.st_mode):
-            raise OSError(21, "not a regular file", str(name))
+            raise _not_regular(info, name)
         # the size it has (a read of limit + 1 bytes allocates that much first), then any more
         data = _read_up_to(descriptor, info.st_size + 1)
         if len(data) > info.st_size:  # grew since the stat

@@ -260,7 +260,7 @@ def _parse_stamped(session: _Session, path: str, data: bytes) -> xml.dom.minidom
             _prefix_ros1_tags(session, doc)
         return doc
     except expat.ExpatError as error:
-        problem = malformed(data, expat.ErrorString(error.code), error.lineno)
+        problem = malformed(data, expat.ErrorString(error.code), error.lineno, error.offset + 1)
     except XmlProblem as refused:
         problem = refused
     except (LookupError, ValueError) as error:  # an unknown encoding= in the declaration
@@ -440,7 +440,11 @@ def _yaml_opener(session: _Session):
     """``open`` for xacro.load_yaml: allowed roots, regular files, the size limit, UTF-8."""
 
     def open_yaml(filename, *args, **kwargs):
-        filename = _installed(session, filename)
+        if not os.path.basename(str(filename)).strip():  # ('' is the macro's folder to xacro)
+            raise _Unreadable(errno.EISDIR, "load_yaml was given no file name" + (
+                f" ('{display_path(filename)}', a folder: a file name or argument left empty?)"
+                if str(filename).strip() else ""))
+        spec, filename = filename, _installed(session, filename)
         session.check_inside(filename, "YAML file")
         try:
             data = session.read_file(filename, "yaml")
@@ -448,7 +452,9 @@ def _yaml_opener(session: _Session):
             unsure = _unsure(session, filename, error, "YAML file")
             if unsure:
                 raise unsure from None
-            raise
+            raise _Unreadable(error.errno, _not_read(
+                error, filename, f"YAML file '{display_path(spec)}'",
+                written=display_path(spec))) from None
         session.paths.append(filename)
         text = data.decode("utf-8", errors="replace")
         xacro_sandbox.refuse_yaml_bomb(text, display_path(filename))
@@ -863,7 +869,7 @@ def _not_read(error: OSError, filename: str, subject: str, where: str = "",
     (the path as the file writes it) already says it; else "SUBJECT: REASON: PATH"."""
     shown = display_path(filename)
     if error.errno != errno.ENOENT:
-        return f"{subject}: {error.strerror}: {shown}"
+        return f"{subject}: {error.strerror}" + ("" if written == shown else f": {shown}")
     return f"{subject} not found{where}" + ("" if written == shown else f" (looked at {shown})")
 
 

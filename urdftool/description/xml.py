@@ -93,7 +93,112 @@ def malformed(data: bytes, reason: str, line: int | None,
         reason += _mismatch(data)
     elif reason == "no element found" and not _COMMENTS.sub(b"", data).strip():
         reason += " (the file holds only comments)"  # match_mobile_robotics_jazzy's, all one
+    elif reason in _EXPLAINED and line is not None:
+        reason += _EXPLAINED[reason](data, _offset(data, line, column))
     return merge_conflict(data) or XmlProblem("syntax", f"malformed XML: {reason}", line, column)
+
+
+def _offset(data: bytes, line: int, column: int | None) -> int:
+    """The offset in ``data`` of expat's place (``line`` from 1, as a Location numbers them;
+    ``column`` from 1 in bytes of that line: the line's start when there is none)."""
+    return min(LineNumbers(data).start(line) + max((column or 1) - 1, 0), len(data))
+
+
+def _declaration_late(data: bytes, offset: int) -> str:
+    """Why an XML declaration not at the file's start is refused: what comes before it (expat's
+    "XML or text declaration not at start of entity": Shadow's MuJoCo URDFs' licence comment,
+    a comment line above victor's gripper_only.xacro)."""
+    first = len(data) - len(data.lstrip())  # (the file's first text)
+    what = "a comment" if data.startswith(b"<!--", first) else \
+        "another XML declaration (two files joined?)" if data.startswith(b"<?xml", first) \
+        else "text"
+    return (f": the file's <?xml ...?> declaration must be its first text, and {what} comes "
+            f"before it, at line {line_at(data, first)}; move the declaration to the top of the "
+            "file or remove it")
+
+
+# a name with a prefix: an element's (after < or </) or an attribute's (after white space)
+_PREFIXED = re.compile(rb"(?:</?|\s)([A-Za-z_][\w.-]*):([A-Za-z_][\w.-]*)")
+_DECLARED = re.compile(rb"\bxmlns:([A-Za-z_][\w.-]*)\s*=")
+_NAMESPACES = {"xacro": "http://www.ros.org/wiki/xacro"}  # prefix -> the URI to declare
+
+
+def _unbound(data: bytes, offset: int) -> str:
+    """Which prefix no ``xmlns:`` declares, in the tag at expat's place ("unbound prefix":
+    talos's calibration.xacro and ros2_mobile_manipulator's mobile_base.xacro use <xacro:...>
+    in a <robot> declaring no xacro namespace; reemc's openni.gazebo.xacro old Gazebo's
+    <sensor:camera>), and how to declare it."""
+    declared = set(_DECLARED.findall(data)) | {b"xml", b"xmlns"}
+    end = data.find(b">", offset)
+    for found in _PREFIXED.finditer(data, offset, len(data) if end < 0 else end + 1):
+        prefix = found.group(1)
+        if prefix not in declared:
+            name = found.group(0).lstrip().decode("utf-8", "replace")
+            said = f"<{name.lstrip('<')}>" if name.startswith("<") else f"attribute '{name}'"
+            prefix = prefix.decode("utf-8", "replace")
+            uri = _NAMESPACES.get(prefix, "URI")
+            return (f": '{prefix}:' of {said} is declared nowhere in the file; declare it on "
+                    f"the root element (<robot xmlns:{prefix}=\"{uri}\">)")
+    return ""
+
+
+_NAMESPACE = re.compile(rb"\sxmlns(?::([A-Za-z_][\w.-]*))?\s*=\s*(\"[^\"]*\"|'[^']*')")
+
+
+def _syntax(data: bytes, offset: int) -> str:
+    """What expat's bare "syntax error" met, where it can be told: a namespace URI holding
+    white space, which expat refuses (amr-ros-config's pioneer3dx_body.xacro declares
+    xmlns:controller across two lines)."""
+    end = data.find(b">", offset)
+    for found in _NAMESPACE.finditer(data, offset, len(data) if end < 0 else end + 1):
+        if re.search(rb"\s", found.group(2)):
+            prefix = (found.group(1) or b"").decode("utf-8", "replace")
+            return (f": the URI of namespace {f'{prefix!r}' if prefix else 'xmlns'} holds white "
+                    f"space (at line {line_at(data, found.start(2))}); write it without")
+    return ""
+
+
+def _invalid_token(data: bytes, offset: int) -> str:
+    """What expat's "not well-formed (invalid token)" met at its place: a byte that is not
+    UTF-8 (a file saved as Latin-1: URDF_exploring's 'R\\xe9volution'), '--' inside a comment
+    (uuv_simulator's rule of dashes, a comment nested in one), a '<' where a tag is still open
+    (a '>' missing: rb1_base's <joint ..., braccio's </inertial)."""
+    byte = data[offset:offset + 1]
+    if byte and byte[0] >= 0x80:
+        return (f": byte 0x{byte[0]:02X} is not UTF-8 (the file is saved in another encoding, "
+                "Latin-1 or Windows-1252?); save it as UTF-8, or name its encoding in the XML "
+                "declaration (<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?>)")
+    opened = data.rfind(b"<!--", 0, max(offset - 2, 0))
+    if opened >= 0 and data.find(b"-->", opened + 4, offset) < 0 and \
+            b"--" in data[max(offset - 2, opened + 2):offset + 2]:
+        return (f": '--' inside the comment opened at line {line_at(data, opened)}: XML allows "
+                "no '--' within a comment (a comment nested in it has one); remove it")
+    tag = data.rfind(b"<", 0, offset)
+    if byte == b"<" and tag >= 0 and data.find(b">", tag, offset) < 0:
+        name = re.match(rb"</?[^\s<>/]*", data[tag:offset]).group(0).decode("utf-8", "replace")
+        kind = "end" if name.startswith("</") else "start"
+        return (f": '<' inside the {kind} tag {name}... opened at line {line_at(data, tag)}, "
+                "whose '>' is missing")
+    return ""
+
+
+def _junk(data: bytes, offset: int) -> str:
+    """What comes after the root element (expat's "junk after document element": reflex's
+    rhr_visualization.URDF, <link> after <link>, a robot written without its <robot>)."""
+    root = re.search(rb"<([A-Za-z_][\w:.-]*)", _COMMENTS.sub(b"", data))
+    after = re.match(rb"\s*<([A-Za-z_][\w:.-]*)", data[offset:])
+    if root is None:
+        return ""
+    first = root.group(1).decode("utf-8", "replace")
+    what = f"another element, <{after.group(1).decode('utf-8', 'replace')}>," if after else "text"
+    return (f": {what} comes after the end of the root element <{first}>, and an XML file has "
+            f"one root" + (" (a robot description's is <robot>)" if first != "robot" else ""))
+
+
+# expat's reasons explained at the place they are met (:func:`malformed`)
+_EXPLAINED = {"XML or text declaration not at start of entity": _declaration_late,
+              "unbound prefix": _unbound, "not well-formed (invalid token)": _invalid_token,
+              "junk after document element": _junk, "syntax error": _syntax}
 
 
 _COMMENTS = re.compile(rb"<!--.*?-->|<\?.*?\?>", re.S)

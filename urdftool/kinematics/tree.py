@@ -20,15 +20,20 @@ def children_by_link(robot) -> dict[str, list[tuple[str, str]]]:
     return children
 
 
-def root_link(robot) -> str:
-    """The single root link; raises TreeError when there is none or several."""
+def roots(robot) -> list[str]:
+    """The links no joint names as its child, in document order: one in a tree."""
     child_links = {child.get("link") for child in robot.root.iter("child")
                    if child.getparent() is not None and child.getparent().tag == "joint"}
-    roots = [name for name in robot.links if name not in child_links]
-    if len(roots) != 1:
-        what = "no root link (a cycle?)" if not roots else f"{len(roots)} root links: {roots}"
+    return [name for name in robot.links if name not in child_links]
+
+
+def root_link(robot) -> str:
+    """The single root link; raises TreeError when there is none or several."""
+    found = roots(robot)
+    if len(found) != 1:
+        what = "no root link (a cycle?)" if not found else f"{len(found)} root links: {found}"
         raise TreeError(what, robot.root)
-    return roots[0]
+    return found[0]
 
 
 def beside_the_tree(robot) -> list[str]:

@@ -40,7 +40,7 @@ from urdftool.records import Frozen
 from urdftool.simulators import SIMULATORS
 
 __all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule",
-           "Conditional", "ReadersTake", "Refused", "UrdfdomAlone", "weighed"]
+           "Conditional", "ReadersTake", "Refused", "UrdfdomAlone", "weighed", "NOT_LOADED"]
 
 FAMILIES = {
     "U0": "loading and the URDF vocabulary",
@@ -60,6 +60,9 @@ FAMILIES = {
 TARGET_DECADES = {"U92": "mujoco", "U93": "pybullet", "U94": "drake", "U95": "gz",
                   "U96": "gazebo", "U97": "isaac", "U98": "pinocchio"}
 _CODE = re.compile(r"U\d{3}")
+# who fails when urdfdom refuses a robot, as a finding of it says so (U023, U108, U405): the
+# tools that load URDF through urdfdom (Gazebo through sdformat's urdfdom)
+NOT_LOADED = "robot_state_publisher, RViz, MoveIt and Gazebo (sdformat) do not load it"
 _RANK = {Severity.INFO: 0, Severity.WARNING: 1, Severity.ERROR: 2}
 
 

@@ -53,11 +53,16 @@ def to_dot(robot, findings=()) -> str:
     links beside the tree (:func:`urdftool.kinematics.tree.beside_the_tree`, the one owner
     every command leaves them out by) and the joints between them are drawn dashed and grey,
     labelled so: urdfdom's model, and every other command, leaves them out (they were drawn as
-    links of the tree, while the command's warning said they were left out).
+    links of the tree, while the command's warning said they were left out). A robot of
+    several roots (a link no joint reaches: urdfdom refuses it) has each root labelled
+    ``(root 2 of 2)``: they were drawn as any link, the parts apart, and only a tooltip said
+    which was a root (a PNG has none).
     """
-    from urdftool.kinematics.tree import beside_the_tree
+    from urdftool.kinematics.tree import beside_the_tree, roots
 
     beside = set(beside_the_tree(robot))
+    several = roots(robot)
+    several = {name: i for i, name in enumerate(several, 1)} if len(several) > 1 else {}
     marked = findings_by_element(robot, findings)
     for joint in robot.children("joint"):
         child = joint.find("child")
@@ -74,6 +79,10 @@ def to_dot(robot, findings=()) -> str:
         if name in beside:
             attributes = {**BESIDE, **attributes, "label": (name, "(beside the tree)"),
                           "tooltip": (BESIDE_TOOLTIP, *attributes.get("tooltip", ()))}
+        elif name in several:  # (no tree: each root and what hangs from it drawn apart)
+            attributes = {**attributes, "label": (name, f"(root {several[name]} of "
+                                                        f"{len(several)})"),
+                          "tooltip": (SEVERAL_ROOTS, *attributes.get("tooltip", ()))}
         lines.append(f"  {_quote(name)}{_attributes(attributes)};")
     missing = []  # links joints name that the robot does not have: drawn as missing
     for joint in robot.children("joint"):
@@ -102,6 +111,8 @@ def to_dot(robot, findings=()) -> str:
 
 MISSING = {"style": "dashed", "color": "#c62828", "fontcolor": "#c62828"}  # a link not defined
 BESIDE = {"style": "rounded,dashed,filled", "color": "#757575", "fontcolor": "#757575"}
+SEVERAL_ROOTS = ("a root: no joint has it as its child, and the robot has several, which "
+                 "urdfdom refuses (a robot is one tree): a joint is missing between them")
 BESIDE_TOOLTIP = ("beside the tree: no joint from the root reaches it, so urdfdom's model "
                   "(and every other urdftool command) leaves it out")
 

@@ -23,5 +23,4 @@ def render(results, stream) -> None:
         stream.write(f"::{_LEVELS[finding.severity.value]} {','.join(properties)}::"
                      f"{workflow(message)}\n")
     summary = Summary.of(results)
-    stream.write(f"urdftool: {counted(summary.files, 'file')}, {counted(summary.errors, 'error')}, "
-                 f"{counted(summary.warnings, 'warning')}, {counted(summary.infos, 'note')}\n")
+    stream.write(f"urdftool: {', '.join([counted(summary.files, 'file'), *summary.counts()])}\n")

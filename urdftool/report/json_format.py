@@ -22,7 +22,9 @@ def as_dict(results) -> dict:
         "version": 1,
         "diagnostics": [diagnostic(f) for f in all_findings(results)],
         "summary": {"files": summary.files, "errors": summary.errors,
-                    "warnings": summary.warnings, "notes": summary.infos},
+                    "warnings": summary.warnings, "notes": summary.infos,
+                    "lines": {"errors": summary.error_lines, "warnings": summary.warning_lines,
+                              "notes": summary.info_lines}},
     }
 
 
@@ -44,6 +46,7 @@ def error_document(results=(), message: str | None = None, location=None) -> dic
                                         "severity": "error", "message": message,
                                         "via": where["via"]})
         document["summary"]["errors"] += 1
+        document["summary"]["lines"]["errors"] += 1  # (a place of its own: no finding's)
         document["summary"]["files"] = max(document["summary"]["files"], 1)
     first = document["diagnostics"][0]["message"] if document["diagnostics"] else None
     document["error"] = message or first

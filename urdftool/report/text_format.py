@@ -33,7 +33,7 @@ from typing import Callable
 from urdftool.diagnostics import Severity, display_path
 from urdftool.errors import LISTED, first_listed, fitting
 from urdftool.report.escape import text as escaped
-from urdftool.report.summary import STYLES, Summary, counted, via_text
+from urdftool.report.summary import STYLES, Summary, counted, lines_of, tallies, via_text
 
 Line = list[tuple[str, str]]  # (text, rich style or "")
 Notes = bool | Callable[[object], bool]  # for all results, or per result
@@ -63,8 +63,10 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
     """
     out: list[Line] = []
     hidden, unseen = 0, 0  # (notes not shown; fixes among them)
+    noted = []  # the notes shown
     for result in results:
         shown = _shown(result, notes)
+        noted += [f for f in shown if f.severity is Severity.INFO]
         if len(shown) < len(result.findings):
             kept = {id(f) for f in shown}
             left = [f for f in result.findings if id(f) not in kept]
@@ -82,7 +84,7 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
             out.append([])
     if quiet:
         return [_escaped(line) for line in out]
-    out.append(_summary(results, hidden))
+    out.append(_summary(results, hidden, noted))
     fixable = [f.fix.safe for result in results for f in result.findings if f.fix is not None]
     if fixable:
         safe, unsafe = fixable.count(True), fixable.count(False)
@@ -103,12 +105,18 @@ def _shown(result, notes: Notes) -> list:
     return [f for f in result.findings if f.severity is not Severity.INFO or id(f) in kept]
 
 
-def _summary(results, hidden: int) -> Line:
+def _summary(results, hidden: int, noted: list) -> Line:
+    """The last line: the files checked and their findings by severity, each with the lines
+    of the files it is on when fewer (:meth:`Summary.counts`: a macro line in many robots is
+    one line to change); the notes the report shows (``noted``), and how many it left out
+    (``hidden``)."""
     summary = Summary.of(results)
     infos = summary.infos - hidden
     style = "bold red" if summary.errors else ("yellow" if summary.warnings else "bold green")
-    counts = [counted(summary.errors, "error"), counted(summary.warnings, "warning")]
-    counts += [counted(infos, "note")] if infos or not hidden else []
+    counts = tallies([(summary.errors, summary.error_lines, "error"),
+                      (summary.warnings, summary.warning_lines, "warning"),
+                      (infos, lines_of(noted), "note")])
+    counts = counts if infos or not hidden else counts[:2]
     verdict = ", ".join(counts) if summary.errors or summary.warnings or infos \
         else "no problems found" if summary.files else "nothing to check"
     if hidden:
@@ -422,13 +430,43 @@ def _also(group: list, named: list | None = None) -> str:
         for h in quoted if h != i)}  # (of two that hold each other, the longer, else the first)
     differ = [i for i in differ if i not in held]
     at, with_it = differ[0], [i for i in differ[1:] if first[i][:2] != "</" and first[i][0] in "<'"]
-    mine = (first[at], *(first[i] for i in with_it))  # (a link's second mesh is another's)
-    others = [said[0] + (f" ({', '.join(said[1:])})" if with_it else "") for said in
-              dict.fromkeys((names[at], *(names[i] for i in with_it)) for names in named)
-              if said != mine]
+    places = (at, *with_it)
+
+    def said(folders: list[str]) -> list[str]:
+        mine = _in_folders(first, places, folders)  # (a link's second mesh is another's)
+        return [names[0] + (f" ({', '.join(names[1:])})" if with_it else "") for names in
+                dict.fromkeys(_in_folders(names, places, folders) for names in named)
+                if names != mine]
+
+    others = said([""] * len(places))
+    if fitting(others, ALSO_WIDTH) < len(others):  # (cut: the folder they share said once)
+        others = said([_shared_folder([names[i] for names in named]) for i in places])
     if len(group) > _NAMES_READ:  # (how many in all is not known)
         return f"; also {', '.join(others[:fitting(others, ALSO_WIDTH)])}, ..."
     return f"; also {first_listed(others, len(others), width=ALSO_WIDTH)}"
+
+
+_SHARED_FOLDER = 16  # [characters] a folder the names of an "also" list share, said once
+
+
+def _shared_folder(names: list[str]) -> str:
+    """The folder the quoted paths ``names`` are all in (``'package://ur_description/meshes/
+    ur10/visual/``) when it is longer than :data:`_SHARED_FOLDER` characters, else "": an
+    "also" list too long for its width writes it ``...`` (:func:`_in_folders`), the group's
+    first message giving it in full (Shadow's arm named six meshes of one package folder, its
+    45 characters each time: three within the list's width, then "... (6 in all)")."""
+    if not all(name[:1] == "'" and "/" in name for name in names):
+        return ""
+    shared = os.path.commonprefix(names)
+    shared = shared[:shared.rfind("/") + 1]
+    return shared if len(shared) > _SHARED_FOLDER else ""
+
+
+def _in_folders(names: tuple, places: tuple, folders: list[str]) -> tuple:
+    """The names at ``places`` of ``names``, each with the folder of its place (``folders``,
+    :func:`_shared_folder`) written ``...``."""
+    return tuple("'..." + names[i][len(folder) - 1:] if folder else names[i]
+                 for i, folder in zip(places, folders))
 
 
 def _holds(named: list[tuple], holder: int, i: int) -> bool:

@@ -100,14 +100,17 @@ def test_an_unknown_reference_offers_the_joints_it_may_name_too(tmp_path):
     message said so and offered links alone (sweep: go1's 'names no link or joint; ...
     available links: FL_calf, ...'), and looked for a misspelt joint's name among links."""
     [message] = case_messages("U611_gazebo_unknown_reference.urdf", "U611")
-    assert message == ("<gazebo reference='hed'> names no link or joint; did you mean 'head'? "
-                       "available links: base_link, cam, head; available joints: cam_joint, "
-                       "head_joint")
+    assert message == ("<gazebo reference='hed'> names no link or joint, so Gazebo drops the "
+                       "block: its sensors, plugins, friction and colours never apply; did you "
+                       "mean 'head'? available links: base_link, cam, head; available joints: "
+                       "cam_joint, head_joint")
     case = Path(__file__).parents[2] / "cases" / "U611_gazebo_unknown_reference.urdf"
     text = case.read_text().replace('reference="hed"', 'reference="head_jiont"')
     _, [finding] = check_folder(tmp_path, {"robot.urdf": text}, select=("U611",))
-    assert finding.message.startswith("<gazebo reference='head_jiont'> names no link or joint; "
-                                      "did you mean 'head_joint'? available links: ")
+    assert finding.message.startswith("<gazebo reference='head_jiont'> names no link or joint, "
+                                      "so Gazebo drops the block: its sensors, plugins, friction "
+                                      "and colours never apply; did you mean 'head_joint'? "
+                                      "available links: ")
 
 
 def test_wheel_not_continuous_says_what_would_be_right():

@@ -769,3 +769,17 @@ def test_a_relative_mesh_under_a_folder_not_beside_the_robot_is_not_certainly_mi
     for uri in ("meshes/hull.stl", "../scenes/meshes/hull.stl", "./robot/hull.stl"):
         [(severity, message)] = _u407(scenes / "robot.urdf", uri, "U408")
         assert severity == Severity.ERROR and "not certain" not in message, (uri, message)
+
+
+def test_a_visual_material_without_a_name_says_urdfdom_refuses_the_robot(tmp_path):
+    """unitree's h1_2.urdf: 55 visuals' <material> without a name said only that, where urdfdom
+    refuses the whole robot for it ("Visual material must contain a name attribute")."""
+    from crossfile_helpers import check_folder
+
+    text = ('<robot name="r"><link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
+            '<material><color rgba="1 0 0 1"/></material></visual></link></robot>')
+    _, [finding] = check_folder(tmp_path, {"robot.urdf": text}, select=("U405",))
+    assert finding.message == (
+        "link 'a': visual <material> has no name attribute, so urdfdom refuses the robot: "
+        "robot_state_publisher, RViz, MoveIt and Gazebo (sdformat) do not load it; name it "
+        "(<material name=\"...\">)")

@@ -414,9 +414,39 @@ def test_the_bound_is_said_as_the_verdict_uses_it(tmp_path):
     so that the numbers it prints decide as the rule does."""
     found, findings = _check(tmp_path, "U316", 0.001, 5e-7, '<box size="0.02 0.02 0.02"/>')
     [message] = [f.message for f in findings]
-    assert message.startswith("link 'a': declared inertia has trace 1.5e-06 kg m^2, over twice "
-                              "the most 0.001 kg can have anywhere inside its geometry (2 m d^2 "
-                              "= 6e-07, d = 0.0173 m the farthest point"), message
+    assert message == ("link 'a': declared inertia has trace 1.5e-06 kg m^2, over twice 2 m "
+                       "d^2, the most its 0.001 kg can have anywhere inside its geometry, which "
+                       "reaches d = 0.0173 m from its centre of mass: a tensor of another part, "
+                       "mass or unit; `urdftool inertia --link 'a'` computes it"), message
+
+
+def test_links_alike_but_for_their_reach_are_one_line_of_the_text_report(tmp_path):
+    """Romeo's six distal fingers (one tensor, one mass, reaching 0.0197 to 0.0199 m) were
+    three lines of the text report: the message gave two figures of the reach (d and the
+    bound 2 m d^2, each its own), and a line folds one figure only. It gives d, from which the
+    bound is read (2 m d^2): one line, d the range of theirs."""
+    import io
+
+    from urdftool.lint.engine import FileResult
+    from urdftool.report import render
+
+    finger = """<link name="{name}"><inertial><origin xyz="0 0 0"/><mass value="2e-06"/>
+      <inertia ixx="1.2e-09" iyy="1.2e-09" izz="1.2e-09" ixy="0" ixz="0" iyz="0"/></inertial>
+      <collision><geometry><box size="{side} {side} {side}"/></geometry></collision></link>"""
+    sides = {"f1": 0.0226, "f2": 0.0228, "f3": 0.023}  # half diagonals 0.0196 to 0.0199 m
+    text = ('<robot name="r"><link name="base"/>' + "".join(
+        finger.format(name=name, side=side) + f'<joint name="j_{name}" type="revolute"><parent '
+        f'link="base"/><child link="{name}"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" '
+        'effort="1" velocity="1"/></joint>' for name, side in sides.items()) + "</robot>")
+    _, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U316",))
+    unnamed = {f.message.replace(f"'{name}'", "") for f in findings for name in sides
+               if f"'{name}'" in f.message}
+    assert len(unnamed) == 3  # (each its own reach)
+    stream = io.StringIO()
+    render("text", [FileResult("robot.urdf", findings)], stream)
+    [line] = [line for line in stream.getvalue().splitlines() if "U316" in line]
+    assert "which reaches d = 0.0196 to 0.0199 m from its centre of mass" in line, line
+    assert "[3 times: lines " in line and "also 'f2', 'f3'" in line, line
 
 
 def test_inertial_at_the_joint_origin_inside_the_link_is_fine(tmp_path):

@@ -516,3 +516,12 @@ def test_the_control_plugin_is_looked_for_once_per_robot(tmp_path, monkeypatch):
     assert actuation.control_plugin(robot) is first
     assert len(looked) == 1
     assert codes(tmp_path, plugin) == ["U507"]
+
+
+def test_a_bare_interface_name_says_who_warns_about_it():
+    """Shadow's hands: 120 U508 lines said "names 'EffortJointInterface' without
+    hardware_interface/; write ..." and not why it matters: gazebo_ros_control takes the old
+    form with a warning on every start."""
+    [message] = case_messages("U508_hardware_interface_prefix.urdf", "U508")
+    assert "without hardware_interface/, the old form gazebo_ros_control warns about on every " \
+        "start ('Deprecated syntax'); write hardware_interface/EffortJointInterface" in message

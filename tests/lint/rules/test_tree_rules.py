@@ -63,13 +63,14 @@ def test_multiple_roots_name_a_dozen_roots_not_all_at_each(tmp_path):
     path.write_text('<robot name="r">' + "".join(f'<link name="l{i}"/>' for i in range(3000))
                     + "</robot>")
     messages = [message for _, message in tree.multiple_roots(load(str(path)))]
-    assert len(messages) == 2999 and max(map(len, messages)) < 300
+    assert len(messages) == 2999 and max(map(len, messages)) < 400
     assert "('l0', 'l1', 'l2', 'l3', 'l4', 'l5', 'l6', 'l7', 'l8', 'l9', 'l10', 'l11', ... " \
         "(3000 in all))" in messages[0]
     path.write_text('<robot name="r"><link name="a"/><link name="b"/></robot>')
     [(_, message)] = tree.multiple_roots(load(str(path)))
-    assert message == "link 'b' has no parent joint: the robot has 2 roots ('a', 'b'); " \
-        "connect them with joints"
+    assert message == "link 'b' has no parent joint: the robot has 2 roots ('a', 'b'), and " \
+        "urdfdom refuses a robot of more than one: robot_state_publisher, RViz, MoveIt and " \
+        "Gazebo (sdformat) do not load it; connect them with joints"
 
 
 def _chain_with_loop(tmp_path, links: int, back_to: int):

@@ -135,7 +135,9 @@ def gazebo_unknown_reference(robot):
     for gazebo in robot.children("gazebo"):
         reference = gazebo.get("reference")
         if reference is not None and reference not in robot.links and reference not in robot.joints:
-            yield gazebo, (f"<gazebo reference='{reference}'> names no link or joint; "
+            yield gazebo, (f"<gazebo reference='{reference}'> names no link or joint, so "
+                           "Gazebo drops the block: its sensors, plugins, friction and colours "
+                           "never apply; "
                            + available('links', reference, robot.links, ('joints', robot.joints)))
 
 

@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import Conditional, Severity, UrdfdomAlone, rule, weighed
+from urdftool.lint.catalogue import (NOT_LOADED, Conditional, Severity, UrdfdomAlone, rule,
+                                     weighed)
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, children_named, first_child
@@ -300,7 +301,9 @@ def malformed_material(robot):
         parent = material.getparent()
         if parent.tag == "visual" and material.get("name") is None:
             yield material, UrdfdomAlone(f"link '{_link_name(parent)}': visual <material> has "
-                                         "no name attribute", {"drake", "browser"})
+                                         f"no name attribute, so urdfdom refuses the robot: "
+                                         f"{NOT_LOADED}; name it (<material name=\"...\">)",
+                                         {"drake", "browser"})
         for color in children_named(material, "color"):
             problem = _rgba_problem(color)
             if problem:

@@ -847,7 +847,7 @@ def inertia_far_from_geometry(robot):
             f"{number(ratio, 3)} times that of its {solid.source} geometry as a uniform solid of "
             f"the declared {properties.mass:g} kg (trace "
             f"{number(mat3.trace(expected.inertia), 3)}){beyond}; "
-            f"`urdftool inertia --link {_shell_word(_name(link))}` computes it")
+            f"{_computed_by(link)}")
         if held:
             message = Conditional("if the collision geometry is the body's shape, not a "
                                   "simplification smaller than it: " + message, Severity.INFO)
@@ -1521,6 +1521,11 @@ def density_in_grams(robot):
 FAR_BEYOND = 2.0  # the bound takes the whole rigid body's reach: twice it is beyond doubt
 
 
+def _computed_by(link) -> str:
+    """What computes the tensor a link's geometry implies, as U310 and U316 end with it."""
+    return f"`urdftool inertia --link {_shell_word(_name(link))}` computes it"
+
+
 def _impossible(robot, link, properties) -> bool:
     """Whether U305 or U306 already refuses the tensor (indefinite, or a triangle broken): the
     one defect the comparisons with geometry (U310, U314, U316) then leave to them."""
@@ -1575,6 +1580,6 @@ def inertia_beyond_geometry(robot):
             fixed = f" and the links fixed to it" if len(reach.links) > 1 else ""
             yield _inertial_part(link, "inertia"), (
                 f"link '{_name(link)}': declared inertia has trace {number(trace, 3)} kg m^2, over "
-                f"twice the most {properties.mass:g} kg can have anywhere inside its "
-                f"geometry{fixed} (2 m d^2 = {number(bound, 3)}, d = {number(farthest, 3)} m the "
-                "farthest point from its centre of mass): a tensor of another part, mass or unit")
+                f"twice 2 m d^2, the most its {properties.mass:g} kg can have anywhere inside its "
+                f"geometry{fixed}, which reaches d = {number(farthest, 3)} m from its centre of "
+                f"mass: a tensor of another part, mass or unit; {_computed_by(link)}")

@@ -13,9 +13,13 @@ U001 = declare("U001", "malformed-xml", Severity.ERROR, """
     The file is not well-formed XML.
 
     Every tool that reads the robot (robot_state_publisher, Gazebo, MoveIt) stops here. The
-    finding gives the parser's line and reason; a file left with git's conflict markers
-    (``<<<<<<<``, ``=======``, ``>>>>>>>``) is said to hold an unresolved merge conflict, at its
-    first marker's line.
+    finding gives the parser's line and reason, with what it met there: the prefix no
+    ``xmlns:`` declares (``<xacro:property>`` in a ``<robot>`` without
+    ``xmlns:xacro="http://www.ros.org/wiki/xacro"``), a byte that is not UTF-8 (a file saved as
+    Latin-1), a ``--`` inside a comment, a tag whose ``>`` is missing, a comment before the XML
+    declaration, an element after the root's end, the element a mismatched end tag meets still
+    open. A file left with git's conflict markers (``<<<<<<<``, ``=======``, ``>>>>>>>``) is
+    said to hold an unresolved merge conflict, at its first marker's line.
 
     A **warning**, not an error, for white space before a ``.urdf``'s XML declaration, and for
     a ``--`` inside one of its comments (``<!-- ------ -->``, ``<!-- x --!>``): urdfdom

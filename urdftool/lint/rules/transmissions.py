@@ -422,7 +422,8 @@ def hardware_interface_prefix(robot):
                     from urdftool.lint.fixes import offer, prefix_text  # (only for a finding)
                     yield offer(interface, (
                         f"{_label(transmission)}: joint '{joint.name}' names '{text}' without "
-                        f"hardware_interface/; write hardware_interface/{text}"),
+                        "hardware_interface/, the old form gazebo_ros_control warns about on "
+                        f"every start ('Deprecated syntax'); write hardware_interface/{text}"),
                         "prepend hardware_interface/", prefix_text(robot, interface,
                                                                     "hardware_interface/"))
 

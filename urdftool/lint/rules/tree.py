@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import Counter
 
-from urdftool.lint.catalogue import Conditional, Severity, Taken, UrdfdomAlone, rule
+from urdftool.lint.catalogue import NOT_LOADED, Conditional, Severity, Taken, UrdfdomAlone, rule
 from urdftool.errors import available, listed
 from urdftool.lint.parts import part
 from urdftool.description.xacro_text import dropped_under
@@ -247,7 +247,9 @@ def multiple_roots(robot):
             if names[robot.links[name]] is None:
                 continue  # a link without a name (urdfdom's '', a second root): U103 says it
             yield robot.links[name], (f"link '{name}' has no parent joint: the robot has "
-                                      f"{len(found)} roots ({named}); connect them with joints")
+                                      f"{len(found)} roots ({named}), and urdfdom refuses a "
+                                      f"robot of more than one: {NOT_LOADED}; connect them "
+                                      "with joints")
 
 
 def _all_joints_wired(robot) -> bool:

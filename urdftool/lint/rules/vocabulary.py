@@ -19,7 +19,7 @@ from urdftool.description.urdf import (EXTENSION_VOCABULARY, EXTENSIONS, NUMBERS
                                        Place, is_namespaced, is_xacro, version_problem, where_valid)
 from urdftool.description.values import parse_numbers, urdfdom_refuses, urdfdom_spelling
 from urdftool.description.xml import child_list
-from urdftool.lint.catalogue import Conditional, Severity, rule
+from urdftool.lint.catalogue import NOT_LOADED, Conditional, Severity, rule
 
 CUTOFF = 0.75  # difflib ratio from which a name is taken for a misspelling of a known one
 
@@ -611,8 +611,7 @@ def _refused(element, attribute: str, text: str, part: str, count: int) -> str:
     ancestors = [element, *element.iterancestors()]
     holder = _holder(element)
     if holder is None or holder.tag == "joint":
-        effect = ("and refuses the robot: robot_state_publisher, RViz, MoveIt and Gazebo "
-                  "(sdformat) do not load it")
+        effect = f"and refuses the robot: {NOT_LOADED}"
     elif element.tag == "color":
         effect = ("and drops the colour (an error on its log): RViz and Gazebo (sdformat) draw "
                   "the visual without it")
