@@ -98,3 +98,26 @@ def test_dotted_parameter_names_are_the_nested_ones(tmp_path):
     assert (arm.name, arm.line) == ("arm", 3)
     assert arm.params["constraints"] == {"goal_time": 0.5, "a": {"goal": 0.1}}
     assert arm.params["constraints"].lines["goal_time"] == 7
+
+
+def test_one_controller_name_declared_in_two_namespaces_is_two_controllers(tmp_path):
+    """The managers of namespaces robot1 and robot2 both declare 'arm': each is a controller
+    reading its own namespace's block (and those of namespaces declaring nothing), where one
+    name used to be one controller with the blocks of both merged (robot2's joints read as
+    robot1's)."""
+    section = """\
+        {r}:
+          controller_manager:
+            ros__parameters:
+              arm: {{type: position_controllers/JointGroupPositionController}}
+          arm:
+            ros__parameters: {{joints: [{r}/a]}}
+        """
+    sections = "".join(section.rstrip(" ").format(r=r) for r in ("robot1", "robot2"))
+    found = read(tmp_path, sections + """\
+        /**/arm:
+          ros__parameters: {interface_name: position}
+        """)
+    assert [(c.namespace, [j.name for j in c.joints()], c.params.get("interface_name"))
+            for c in found.controllers] == [("robot1", ["robot1/a"], "position"),
+                                            ("robot2", ["robot2/a"], "position")]

@@ -497,3 +497,80 @@ def generate_launch_description():
     read = _read(root, "q/launch/a.launch.py")
     [start] = [a for a in read.actions if isinstance(a, Start)]
     assert start.when == () and [[c.kind for c in r.when] for r in start.remaps] == [["equals"]]
+
+
+def test_a_description_built_for_a_node_under_a_condition_has_that_condition(tmp_path):
+    """A ``Command`` running xacro is evaluated when the node given it runs: the real robot's
+    description given only to a robot_state_publisher under ``UnlessCondition(use_mock)`` is
+    built under it; the mock's, given to move_group too, is built always but reaches the
+    controller manager (through the robot_state_publisher) only under ``IfCondition``. So the
+    real robot's controllers file, loaded under ``UnlessCondition``, is not the mock's
+    companion, nor the mock's the real one's (dg5f_ros2's dg5f_right_moveit.launch.py: 60
+    false U604 errors, each hand's controllers checked against the other build). A
+    description held by nodes of different conditions keeps its own."""
+    import urdftool
+    from urdftool.description.runtime import runtime
+
+    joint = ("<robot name='h'><link name='a'/><link name='b'/><joint name='j' type='revolute'>"
+             "<parent link='a'/><child link='b'/><limit effort='1' velocity='1' lower='-1' "
+             "upper='1'/></joint>{}</robot>")
+    control = ("<ros2_control name='s' type='system'><hardware><plugin>{}</plugin></hardware>"
+               "<joint name='j'><command_interface name='{}'/></joint></ros2_control>")
+    controllers = ("controller_manager:\n  ros__parameters:\n    c:\n      type: "
+                   "joint_trajectory_controller/JointTrajectoryController\n"
+                   "c:\n  ros__parameters:\n    joints: [j]\n    command_interfaces: [{}]\n")
+    root = _repo(tmp_path, {
+        "p/package.xml": PACKAGE.format("p"),
+        "p/urdf/mock.urdf.xacro": joint.format(control.format("mock_components/GenericSystem",
+                                                              "position")),
+        "p/urdf/real.urdf.xacro": joint.format(control.format("v/Hardware", "effort")),
+        "p/urdf/other.urdf.xacro": joint.format(""),
+        "p/config/mock.yaml": controllers.format("position"),
+        "p/config/real.yaml": controllers.format("effort"),
+        "p/launch/hand.launch.py": '''
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.conditions import IfCondition, UnlessCondition
+from launch.substitutions import Command, FindExecutable, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+def generate_launch_description():
+    use_mock = LaunchConfiguration("use_mock")
+    mock = Command([PathJoinSubstitution([FindExecutable(name="xacro")]), " ",
+                    PathJoinSubstitution([FindPackageShare("p"), "urdf", "mock.urdf.xacro"])])
+    real = Command([PathJoinSubstitution([FindExecutable(name="xacro")]), " ",
+                    PathJoinSubstitution([FindPackageShare("p"), "urdf", "real.urdf.xacro"])])
+    shared = Command(["xacro ", PathJoinSubstitution([FindPackageShare("p"), "urdf",
+                                                      "other.urdf.xacro"])])
+    return LaunchDescription([
+        DeclareLaunchArgument("use_mock", default_value="true"),
+        Node(package="controller_manager", executable="ros2_control_node",
+             parameters=[PathJoinSubstitution([FindPackageShare("p"), "config", "mock.yaml"])],
+             condition=IfCondition(use_mock)),
+        Node(package="robot_state_publisher", executable="robot_state_publisher",
+             parameters=[{"robot_description": mock}], condition=IfCondition(use_mock)),
+        Node(package="controller_manager", executable="ros2_control_node",
+             parameters=[PathJoinSubstitution([FindPackageShare("p"), "config", "real.yaml"])],
+             condition=UnlessCondition(use_mock)),
+        Node(package="robot_state_publisher", executable="robot_state_publisher",
+             parameters=[{"robot_description": real}], condition=UnlessCondition(use_mock)),
+        Node(package="moveit_ros_move_group", executable="move_group",
+             parameters=[{"robot_description": mock}]),
+        Node(package="rviz2", executable="rviz2", parameters=[{"robot_description": shared}],
+             condition=IfCondition(use_mock)),
+        Node(package="a", executable="b", parameters=[{"robot_description": shared}]),
+    ])
+'''})
+    described = {_text(d.command).split("/")[-1]: ([c.kind for c in d.when],
+                                                   d.published and [c.kind for c in d.published])
+                 for d in _described(_read(root, "p/launch/hand.launch.py"))}
+    # MoveIt plans with the mock unconditionally; it reaches a controller manager only with
+    # use_mock, through the robot_state_publisher publishing it
+    assert described == {"mock.urdf.xacro": ([], ["if"]), "real.urdf.xacro": (["unless"], None),
+                         "other.urdf.xacro": ([], None)}
+    for robot, own in (("mock", "mock.yaml"), ("real", "real.yaml")):
+        checked = urdftool.load(str(root / f"p/urdf/{robot}.urdf.xacro"))
+        loaded = {load.path.name for configuration, _ in runtime(checked).configurations
+                  for load in configuration.loaded}
+        assert loaded == {own}, robot

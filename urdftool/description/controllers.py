@@ -209,8 +209,41 @@ def started(robot, controller: Controller) -> bool | None:
 
 
 def controllers(robot) -> list[Controller]:
-    """Every controller in the robot's controller YAML files (read once per robot)."""
-    return [c for f in controller_files(robot) for c in f.controllers]
+    """Every controller in the robot's controller YAML files (read once per robot), but those
+    of another instance of the robot: a file whose controller managers in several namespaces
+    declare controllers, one of them the namespace the robot's simulated controller manager
+    runs in (:func:`manager_namespaces`), holds the others' for the robot built there with
+    another name (a file with a ``robot1:`` and a ``robot2:`` section, each robot's
+    gz_ros2_control plugin in its own namespace)."""
+    namespaces = manager_namespaces(robot)
+    found = []
+    for file in controller_files(robot):
+        spaces = {c.namespace.strip("/") for c in file.controllers if c.layout == "ros2"}
+        ours = namespaces & spaces
+        found.extend(c for c in file.controllers
+                     if not ours or c.layout != "ros2" or c.namespace.strip("/") in ours
+                     or any(w in c.namespace.split("/") for w in WILDCARDS))
+    return found
+
+
+def manager_namespaces(robot) -> set[str]:
+    """The namespaces the robot's simulated controller manager runs in, as its URDF says: the
+    ``<ros><namespace>`` of its gazebo_ros2_control/gz_ros2_control plugin, written without
+    substitution (once per robot)."""
+    from urdftool.description.actuation import CONTROL_PLUGINS, gazebo_plugins
+
+    def read() -> set[str]:
+        found = set()
+        for plugin in gazebo_plugins(robot):
+            text = f"{plugin.get('filename', '')} {plugin.get('name', '')}"
+            if any(name in text for name in CONTROL_PLUGINS):
+                for element in plugin.iterfind("ros/namespace"):
+                    value = (element.text or "").strip().strip("/")
+                    if value and "$(" not in value:
+                        found.add(value)
+        return found
+
+    return robot.memo(manager_namespaces, read)
 
 
 def controller_files(robot) -> list[ControllerFile]:
@@ -298,24 +331,46 @@ def _ros2(file: YamlFile, found: ControllerFile) -> None:
                                              merged(first.params, block.params), first.line)
         else:
             own[block.name] = block
-    declared: dict[str, Controller] = {}
+    declared: dict[tuple[str, str], Controller] = {}  # (namespace, name)
     for block in found.blocks:
         for key, value in block.params.items():
             kind = value.get("type") if isinstance(value, dict) else None
-            if isinstance(kind, str) and "/" in kind and str(key) not in declared:
-                declared[str(key)] = Controller(file, str(key), kind, value.lines.get("type", value.line),
-                                                "ros2", namespace=block.namespace)
+            if isinstance(kind, str) and "/" in kind and (block.namespace, str(key)) not in declared:
+                declared[(block.namespace, str(key))] = Controller(
+                    file, str(key), kind, value.lines.get("type", value.line), "ros2",
+                    namespace=block.namespace)
+    names = {name for _, name in declared}
     for block in own.values():
         kind = block.params.get("type")
-        if isinstance(kind, str) and "/" in kind and block.name not in declared:
-            declared[block.name] = Controller(file, block.name, kind, block.params.lines["type"], "ros2",
-                                              namespace=block.namespace)
-    for name, controller in declared.items():
+        if isinstance(kind, str) and "/" in kind and block.name not in names:
+            declared[(block.namespace, block.name)] = Controller(
+                file, block.name, kind, block.params.lines["type"], "ros2", namespace=block.namespace)
+    spaces: dict[str, set[str]] = {}  # a name -> the namespaces whose managers declare it
+    for namespace, name in declared:
+        spaces.setdefault(name, set()).add(namespace)
+    for (namespace, name), controller in declared.items():
         block = own.get(name)
+        if block is not None and len(spaces[name]) > 1:
+            # one name declared by the managers of several namespaces (robot1 and robot2 of
+            # one file, each instance its section): each reads its own namespace's blocks,
+            # and those of namespaces declaring nothing (/**/NAME)
+            block = _blocks_of(found.blocks, name, namespace, spaces[name])
         controller.params = merged(wildcard, block.params) if block else wildcard
         controller.own = block.params if block else None
         controller.block_line = block.line if block else None
     found.controllers.extend(declared.values())
+
+
+def _blocks_of(blocks: list[ParameterBlock], name: str, namespace: str,
+               declaring: set[str]) -> ParameterBlock | None:
+    """The blocks of node ``name`` a controller of the manager in ``namespace`` reads, merged:
+    those of its namespace and of namespaces whose managers declare no ``name``."""
+    found = None
+    for block in blocks:
+        if block.name == name and (block.namespace == namespace or block.namespace not in declaring):
+            found = block if found is None else ParameterBlock(
+                found.name, found.namespace, merged(found.params, block.params), found.line)
+    return found
 
 
 # --- ROS 1 --------------------------------------------------------------------------------

@@ -365,7 +365,10 @@ class Description(Frozen):
     mappings, MoveItConfigsBuilder), else read as it is (``textfile=``, Python's ``open``).
     ``complete``: every argument given is in ``args`` (False when a mapping was not read).
     ``replaced``: for a file read as it is, the texts the launch file replaces in it before
-    loading it (None for one not known without running it): a template it fills."""
+    loading it (None for one not known without running it): a template it fills.
+    ``published``: the conditions under which the description reaches a controller manager (the
+    robot_state_publisher or ros2_control_node given it), when they are more than ``when``'s
+    (a description given to those under a condition and to MoveIt unconditionally); else None."""
 
     command: Value | None
     file: Value | None
@@ -376,13 +379,15 @@ class Description(Frozen):
     xacro: bool  # for ``file``: run through xacro
     complete: bool
     replaced: tuple
+    published: tuple | None
 
     __slots__ = ("command", "file", "args", "when", "line", "parameter", "xacro", "complete",
-                 "replaced")
+                 "replaced", "published")
 
     def __init__(self, command: Value | None = None, file: Value | None = None, args: tuple = (),
                  when: tuple = (), line: int | None = None, parameter: str = "",
-                 xacro: bool = False, complete: bool = True, replaced: tuple = ()) -> None:
+                 xacro: bool = False, complete: bool = True, replaced: tuple = (),
+                 published: tuple | None = None) -> None:
         set_field = object.__setattr__
         set_field(self, "command", command)
         set_field(self, "file", file)
@@ -393,6 +398,7 @@ class Description(Frozen):
         set_field(self, "xacro", xacro)
         set_field(self, "complete", complete)
         set_field(self, "replaced", replaced)
+        set_field(self, "published", published)
 
 
 class LaunchFile(Record):

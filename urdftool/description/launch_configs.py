@@ -533,14 +533,17 @@ class Described(Frozen):
     # for their defaults only: that condition in words (also in ``when``), else ""
     by_default: str
     replaced: tuple  # read as it is, with these texts replaced first (Description's)
+    # when it reaches a controller manager: under more than ``when`` (Description's published)
+    published: When | None
 
     __slots__ = ("path", "written", "args", "when", "launch", "line", "xacro", "complete",
-                 "template", "chosen_by", "chain", "by_default", "replaced")
+                 "template", "chosen_by", "chain", "by_default", "replaced", "published")
 
     def __init__(self, path: Path | None, written: str, args: dict, when: When, launch: str,
                  line: int | None, xacro: bool = True, complete: bool = True,
                  template: str | None = None, chosen_by: frozenset = frozenset(),
-                 chain: tuple = (), by_default: str = "", replaced: tuple = ()) -> None:
+                 chain: tuple = (), by_default: str = "", replaced: tuple = (),
+                 published: When | None = None) -> None:
         set_field = object.__setattr__
         set_field(self, "path", path)
         set_field(self, "written", written)
@@ -555,6 +558,7 @@ class Described(Frozen):
         set_field(self, "chain", chain)
         set_field(self, "by_default", by_default)
         set_field(self, "replaced", replaced)
+        set_field(self, "published", published)
 
 
 class Configuration(Record):
@@ -891,7 +895,9 @@ def _expand(index, launch: LaunchFile, given: dict, top: bool, outer: When,
                                                  remaps + _remapped(action.remaps, scope, launch)))
             configuration.loaded.extend(files)
         elif isinstance(action, Description) and _describes(action.parameter):
-            configuration.described.append(_described(action, scope, when, launch, via))
+            published = outer.also(_when_of(action.published, scope)) \
+                if action.published is not None else None
+            configuration.described.append(_described(action, scope, when, launch, via, published))
 
 
 def _bind(action: Arg, scope: Scope, given: dict, free: bool, when: When) -> None:
@@ -998,7 +1004,7 @@ def _describes(parameter: str) -> bool:
 
 
 def _described(action: Description, scope: Scope, when: When, launch: LaunchFile,
-               via: tuple) -> Described:
+               via: tuple, published: When | None = None) -> Described:
     args: dict = {}
     path, written, template, through, complete = None, "", None, action.xacro, action.complete
     chosen_by: frozenset = frozenset()
@@ -1049,7 +1055,9 @@ def _described(action: Description, scope: Scope, when: When, launch: LaunchFile
     return Described(path, written, args, when, launch.display, action.line, through, complete,
                      template, chosen_by, via + (launch.display,),
                      _joined_words(scope.by_default, by_default) if path is not None else "",
-                     action.replaced if action.command is None else ())
+                     action.replaced if action.command is None else (),
+                     published.also(When(True, free, (by_default,))) if published is not None
+                     and by_default else published)
 
 
 BY_DEFAULT = "when launched with "  # how a condition on package arguments' defaults begins

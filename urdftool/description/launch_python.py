@@ -132,6 +132,7 @@ def read_python_launch(path: Path, display: str, text: str,
         launch.problem = "too large or too deeply nested to read completely; read in part"
     finally:
         room.steps -= reader.steps
+    _described_where_used(reader.acts)
     # A launch configuration is read when its action runs, after every argument is declared:
     # the declarations come first, whichever line made them.
     acts = sorted(reader.acts, key=lambda act: act.kind != "arg" or act.fields["fixed"])
@@ -841,8 +842,10 @@ class _Reader:
         executable = keywords.get("executable") or keywords.get("node_executable")
         arguments = [v if isinstance(v, Value) else unknown("?")
                      for v in _flat(keywords.get("arguments") or [])]
-        files = []
+        files, given = [], []  # given: parameter values, for the descriptions they hold
         for entry in _flat(keywords.get("parameters") or []):
+            if isinstance(entry, (Value, dict)):
+                given.append(entry)
             if isinstance(entry, _ParamFile):
                 files.append(ParamFile(entry.path, entry.substitute, (), line))
             elif isinstance(entry, Value) and not any(isinstance(p, tuple) and p[0] == "command"
@@ -860,7 +863,8 @@ class _Reader:
                        and len(pair) == 2 and all(isinstance(name, Value) for name in pair))
         act = _Act("start", when, line, package=package if isinstance(package, Value) else unknown("?"),
                    executable=executable if isinstance(executable, Value) else unknown("?"),
-                   arguments=tuple(arguments), files=tuple(files), remaps=remaps)
+                   arguments=tuple(arguments), files=tuple(files), remaps=remaps,
+                   given=tuple(given))
         self.acts.append(act)
         _add_condition(act, keywords.get("condition"))
         return act
@@ -879,10 +883,12 @@ class _Reader:
             return Start(fields["package"], fields["executable"], fields["arguments"], files, when,
                          act.line, fields.get("remaps", ()))
         if act.kind == "description":
+            published = fields.get("published")
             return Description(fields.get("command"), fields.get("file"), fields.get("args", ()),
                                when, act.line, xacro=fields.get("xacro", False),
                                complete=fields.get("complete", True),
-                               replaced=fields.get("replaced", ()))
+                               replaced=fields.get("replaced", ()),
+                               published=tuple(published) if published is not None else None)
         if act.kind == "params" and isinstance(fields.get("path"), Value):
             return ParamFile(fields["path"], fields["substitute"], when, act.line)
         return None
@@ -1042,6 +1048,64 @@ def _xacro_words(words: list) -> list:
             break
         built += [literal(" "), word] if built else [word]
     return built
+
+
+def _described_where_used(acts: list) -> None:
+    """A robot description a ``Command`` builds is built when an action given it runs (the
+    substitution is evaluated then, not where it is assigned): when every action holding it
+    runs under the same conditions, and under the description's own, the description has
+    them. dg5f_right_moveit.launch.py builds the mock hand's xacro for a robot_state_publisher
+    under ``IfCondition(use_mock)`` and the real hand's for one under ``UnlessCondition``,
+    each beside the controller manager with its controllers file: one description is never
+    built with the other's controllers. Held by actions of different conditions, or by none
+    read, the description keeps its own."""
+    for act in acts:
+        command = act.fields.get("command") if act.kind == "description" else None
+        if command is None:
+            continue
+        users = [other for other in acts if other is not act and other.kind != "description"
+                 and _holds(other.fields, command, 0)]
+        conditions = _common_when(users, act.when)
+        if conditions is not None:
+            act.when = conditions
+            continue
+        # given to MoveIt or RViz unconditionally, it may still reach a controller manager only
+        # under a condition: the mock hand's xacro given to move_group and rviz2 and to a
+        # robot_state_publisher under IfCondition(use_mock), which publishes it to the manager
+        act.fields["published"] = _common_when(
+            [user for user in users if user.kind == "start"
+             and (user.fields["executable"].literal or "") in _PUBLISHERS], act.when)
+
+
+_PUBLISHERS = ("robot_state_publisher", "ros2_control_node")  # what hands a controller manager
+# its robot: the topic robot_description it subscribes to, or its own parameter
+
+
+def _common_when(users: list, when: list) -> list | None:
+    """The conditions every one of ``users`` runs under, when they are the same for all and
+    more than ``when`` (of which they are an extension); else None."""
+    if not users or any(user.when != users[0].when for user in users):
+        return None
+    if users[0].when[:len(when)] == when and len(users[0].when) > len(when):
+        return list(users[0].when)
+    return None
+
+
+def _holds(value, command, depth: int) -> bool:
+    """Whether ``value`` (an action's fields: Values, lists, tuples, dicts) holds the
+    ``Command`` value ``command`` itself, as one of its parts."""
+    if depth > MAX_DEPTH:
+        return False
+    if isinstance(value, Value):
+        return any(isinstance(part, tuple) and len(part) > 1 and part[0] == "command"
+                   and (part[1] is command or _holds(part[1], command, depth + 1))
+                   for part in value.parts)
+    if isinstance(value, dict):
+        value = list(value.values())
+    if isinstance(value, (list, tuple)):
+        return any(_holds(item, command, depth + 1) for item in value)
+    fields = getattr(value, "fields", None)  # a parameter file, a nested action
+    return isinstance(fields, dict) and _holds(fields, command, depth + 1)
 
 
 def _add_condition(act: _Act, condition) -> None:

@@ -301,7 +301,8 @@ def _narrowed(configuration: Configuration, real: str, path: Path, root: Path) -
             if any(d.chain[:end] == action.chain[:end] for d in configuration.described):
                 near = [d for d in builds if d.chain[:end] == action.chain[:end]] or builds
                 break
-        return any(not action.when.excludes(d.when) for d in near)
+        # a description reaches the controller manager only where it is published to it
+        return any(not action.when.excludes(d.published or d.when) for d in near)
 
     loaded = [load for load in configuration.loaded if its(load)]
     started = [start for start in configuration.started if its(start)]

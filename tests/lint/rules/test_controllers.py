@@ -548,3 +548,38 @@ def test_a_joint_without_a_transmission_is_an_error_where_transmissions_are_read
     assert marks == [("c.yaml", 2, "U603")] and findings[0].severity == severity
     assert findings[0].message.endswith("joint 'head_joint' has no transmission or ros2_control "
                                         "joint; add one for it, or remove it from the controller")
+
+
+def test_a_file_with_a_section_per_robot_instance_is_read_for_this_instance_s_namespace(tmp_path):
+    """One YAML with a ``robot1:`` and a ``robot2:`` section, each a controller manager
+    declaring the same controllers for its own instance of the robot (robot2/head_joint:
+    the same xacro built with robot_name:=robot2): the robot whose gz_ros2_control plugin
+    runs in namespace robot1 has robot1's controllers, not robot2's (false U602 errors on
+    robot2's joints, and robot1's controller read with robot2's joints). Without the
+    plugin's namespace nothing says which section is the robot's: both are checked."""
+    body = """<gazebo><plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin">
+        <parameters>config/c.yaml</parameters>{ns}</plugin></gazebo>
+      <ros2_control name="s" type="system"><hardware><plugin>gz_ros2_control/GazeboSimSystem</plugin></hardware>
+        <joint name="robot1/head_joint"><command_interface name="position"/><state_interface name="position"/></joint>
+      </ros2_control>"""
+    robot = HEAD_ROBOT.replace('"head_joint"', '"robot1/head_joint"')
+    section = """\
+        {r}:
+          controller_manager:
+            ros__parameters:
+              head_controller:
+                type: forward_command_controller/ForwardCommandController
+          head_controller:
+            ros__parameters:
+              joints: [{r}/head_joint]
+              interface_name: position
+        """
+    yaml = section.rstrip(" ").format(r="robot1") + section.rstrip(" ").format(r="robot2")
+    found, _ = check_folder(tmp_path / "a", {
+        "robot.urdf": robot.format(body=body.format(ns="<ros><namespace>robot1</namespace></ros>")),
+        "config/c.yaml": yaml}, select=("U602",))
+    assert found == []
+    found, _ = check_folder(tmp_path / "b", {
+        "robot.urdf": robot.format(body=body.format(ns="")), "config/c.yaml": yaml},
+        select=("U602",))
+    assert [line for _, line, _ in found] == [17]  # robot2's joint, robot1's read as robot1's

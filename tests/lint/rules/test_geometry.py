@@ -349,6 +349,12 @@ def test_a_mesh_of_an_exporters_package_name_says_the_robots_own_package_holds_i
     assert message.endswith("; the robot's own package 'robot_urdf' holds "
                             "'meshes/chassis_link.STL': write "
                             "'package://robot_urdf/meshes/chassis_link.STL'"), message
+    # and says only that: the name is the slip, not a dependency to declare or a package to
+    # pass (X-Humanoid's tiangong_lite.urdf: 90 words before the one piece of advice that fits)
+    assert message.startswith("link 'a' <visual>: mesh 'package://ranger1s_urdf_3/meshes/"
+                              "chassis_link.STL': package 'ranger1s_urdf_3' not found; the "
+                              "robot's own"), message
+    assert "exec_depend" not in message and "--package" not in message, message
     [(_, message)] = _u407(tmp_path / "urdf" / "r.urdf", "package://ranger1s_urdf_3/meshes/x.STL")
     assert "own package" not in message
     # the meshes' findings are one line of the text report (ranger1s_urdf_3.urdf: 16 lines)

@@ -1056,3 +1056,34 @@ def test_a_massless_moving_link_is_a_warning_in_a_web_pages_copy(tmp_path):
     assert [severity for severity, _ in found] == ["warning"] * 3, found
     assert all(message.startswith("if a simulator loads it (a web page reads it: ")
                for _, message in found), found
+
+
+def test_a_placeholder_tensor_beyond_its_geometry_is_negligible_where_it_is_welded(tmp_path):
+    """U316 for a link welded to a heavier body (HippoCampus' flange, dome and mounts: 1e-5 kg
+    with 1e-5 kg m^2, fixed to a 2.31 kg hull whose least moment is 0.0024 kg m^2): what the
+    tensor should be, it changes the body simulators move as one by under 1 %, a note naming
+    that, as U310 says of such links; fixed to a body it changes by more, or alone, a warning."""
+    from urdftool.diagnostics import Severity
+
+    def robot(base_moment: str, welded: bool = True) -> str:
+        flange = ('<link name="flange"><inertial><mass value="1e-5"/><inertia ixx="1e-5" ixy="0"'
+                  ' ixz="0" iyy="1e-5" iyz="0" izz="1e-5"/></inertial><visual><geometry>'
+                  '<box size="0.12 0.12 0.02"/></geometry></visual></link>')
+        joint = ('<joint name="f" type="{kind}"><parent link="hull"/><child link="flange"/>'
+                 '<origin xyz="0.2 0 0"/>{limit}</joint>').format(
+            kind="fixed" if welded else "revolute",
+            limit="" if welded else '<axis xyz="1 0 0"/><limit lower="-1" upper="1" '
+                                    'effort="1" velocity="1"/>')
+        return (f'<robot name="h"><link name="hull"><inertial><mass value="2.31"/>'
+                f'<inertia ixx="{base_moment}" ixy="0" ixz="0" iyy="0.0107" iyz="0" izz="0.0107"/>'
+                '</inertial><visual><geometry><cylinder radius="0.05" length="0.35"/></geometry>'
+                f'</visual></link>{flange}{joint}</robot>')
+
+    def flange(text: str):
+        _, findings = check_folder(tmp_path, {"robot.urdf": text}, select=("U316",))
+        return [(f.severity, f.message) for f in findings if "'flange'" in f.message]
+
+    [(severity, message)] = flange(robot("0.0024"))
+    assert severity == Severity.INFO and "negligible where it is" in message, message
+    assert [s for s, _ in flange(robot("0.0002"))] == [Severity.WARNING]  # 5 % of that body
+    assert [s for s, _ in flange(robot("0.0024", welded=False))] == [Severity.WARNING]

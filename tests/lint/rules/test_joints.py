@@ -170,6 +170,16 @@ ZERO_EFFORT = ('<robot name="r"><link name="base_link"/><link name="a"/>\n'
           "package.xml": "<package format=\"2\"><name>bot</name><buildtool_depend>catkin"
                          "</buildtool_depend></package>", ".git/HEAD": ""},
      "WARNING", "gazebo.launch spawns it into Gazebo"),
+    # both: each said as a sentence of its own (ESA's ExoMy read "Gazebo (...),
+    # simulation.launch.py spawns it into Gazebo simulates the robot")
+    ('<gazebo><plugin name="c" filename="libgazebo_ros_control.so"/></gazebo>',
+     {"launch/gazebo.launch": '<launch><param name="robot_description" '
+      'textfile="$(find bot)/robot.urdf"/><node pkg="gazebo_ros" type="spawn_model" '
+      'name="s" args="-urdf -param robot_description -model r"/></launch>',
+      "package.xml": "<package format=\"2\"><name>bot</name><buildtool_depend>catkin"
+                     "</buildtool_depend></package>", ".git/HEAD": ""},
+     "WARNING", "; Gazebo (libgazebo_ros_control.so) simulates the robot; gazebo.launch spawns it "
+                "into Gazebo"),
     # real hardware (judge17): a <ros2_control> joint taking effort commands from a vendor's
     # hardware plugin; ros2_control's joint limits read <limit effort> from the URDF and clamp
     # the command to it, simulator or not (a note said it mattered only to a simulator)

@@ -219,3 +219,17 @@ def test_a_mimic_joint_is_placed_from_the_joint_it_mimics(tmp_path):
     assert _check(tmp_path / "a", finger + control.format(state=STATE), select=("U517",))[1] == []
     findings = _check(tmp_path / "b", finger + control.format(state=""), select=("U517",))[1]
     assert sorted(f.message.split("'")[1] for f in findings) == ["finger_joint", "head_joint"]
+
+
+def test_a_near_miss_of_a_name_the_plugin_is_given_is_not_suggested(tmp_path):
+    """ESA's ExoMy gives gazebo_ros_p3d <body_name> and <body_tf_name>: the second is ignored,
+    and 'did you mean <body_name>?' suggested the name given one line above it."""
+    body = """<gazebo><plugin name="p3d" filename="libgazebo_ros_p3d.so">
+      <body_name>head</body_name><body_tf_name>odom</body_tf_name><frame_name>map</frame_name>
+    </plugin></gazebo>"""
+    found, findings = _check(tmp_path, body, {"package.xml": PACKAGE.format(tool="ament_cmake")})
+    [finding] = [f for f in findings if f.code == "U641"]
+    assert "did you mean" not in finding.message, finding.message
+    assert finding.message.endswith("does not read <body_tf_name>, so it is ignored; "
+                                    "<body_name>, the name it reads, is given beside it: remove "
+                                    "<body_tf_name>"), finding.message

@@ -185,3 +185,27 @@ def test_limits_and_inertials_that_differ_are_warnings_naming_the_condition(tmp_
         assert finding.severity == Severity.WARNING
         assert finding.message.endswith(", if the two sides are built as mirror images"), \
             finding.message
+
+
+def test_a_gripper_s_two_fingers_on_one_link_are_mirror_images_not_copies(tmp_path):
+    """The two fingers of one gripper hang from one link at mirror-image places and share its
+    frame, whatever that frame is turned to (an arm's wrist at rpy 1.570, not quite a quarter
+    turn): they are each other's mirror image, not one part carried across. Read as a copy,
+    fingers closing together about +y and -y (equal ranges) were said to have a sign flipped
+    (U220; RoboAlQuds2027's robot_arm)."""
+    finger = ('<joint name="gripper_{side}_joint" type="prismatic"><parent link="palm"/>'
+              '<child link="{side}_finger"/><axis xyz="0 {sign}1 0"/>'
+              '<limit lower="0" upper="0.055" effort="10" velocity="0.5"/>'
+              '<origin xyz="0 {other}0.065 0.03"/></joint><link name="{side}_finger"/>')
+    text = ('<robot name="g"><link name="base"/><link name="wrist"/><link name="palm"/>'
+            '<joint name="w" type="revolute"><parent link="base"/><child link="wrist"/>'
+            '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+            '<origin xyz="0 0 1" rpy="1.570 0 0"/></joint>'
+            '<joint name="p" type="fixed"><parent link="wrist"/><child link="palm"/>'
+            '<origin xyz="0 0 0.08" rpy="0 0 1.57"/></joint>'
+            + finger.format(side="right", sign="", other="-")
+            + finger.format(side="left", sign="-", other="") + "</robot>")
+    assert _found(tmp_path, text) == []
+    # one finger's axis flipped without its range: now the slip is said
+    flipped = text.replace('<axis xyz="0 -1 0"/>', '<axis xyz="0 1 0"/>')
+    assert [code for code, _ in _found(tmp_path, flipped)] == ["U220"]

@@ -255,10 +255,15 @@ def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:
                     "loaders given its folder find it (Pinocchio's package_dirs; MuJoCo "
                     "before 3.7.0 given it as meshdir, as it keeps a mesh's file name only)"
                     ) if below else ""
-            return MeshProblem("package", f"mesh '{uri}': {error}{lacking}{held}"
-                                          f"{_in_own_package(robot, owner, tail)}",
-                               certain=not declares and not below and (misspelt or bool(seen)),
-                               declared=error.declared_by is not None, repeated=error.repeated)
+            certain = not declares and not below and (misspelt or bool(seen))
+            own = _in_own_package(robot, owner, tail)
+            if own:  # the package's name is the slip: no dependency to add, no path to pass
+                return MeshProblem("package", f"mesh '{uri}': package '{package}' not found"
+                                              f"{own}{lacking}{held}", certain=certain,
+                                   declared=error.declared_by is not None)
+            return MeshProblem("package", f"mesh '{uri}': {error}{lacking}{held}",
+                               certain=certain, declared=error.declared_by is not None,
+                               repeated=error.repeated)
         folder = os.path.dirname(folder)
     if folder == base:
         written = os.path.normpath(os.path.join(package, tail))  # (package://NAME.stl: no '/')

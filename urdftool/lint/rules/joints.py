@@ -452,8 +452,10 @@ def _zero_effort(robot, name: str):
 
     said = f"joint '{name}': effort limit is 0; " + _HELD_STILL_BY["effort"]
     found = simulators(robot)
-    if found:
-        return Conditional(f"{said}; {', '.join(found[:2])} simulates the robot")
+    if found:  # a plugin is a name, a launch file spawning the robot a clause of its own
+        return Conditional(f"{said}; " + "; ".join(
+            what if " spawns it into " in what else f"{what} simulates the robot"
+            for what in found[:2]))
     hardware = _effort_hardware(robot, name)
     if hardware is not None:  # real hardware (or mock) driven by effort through ros2_control
         return Conditional(f"{said}; its <ros2_control> joint takes effort commands (hardware "

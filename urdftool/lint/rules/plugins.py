@@ -112,6 +112,7 @@ def gazebo_plugin_unknown_parameter(robot):
         names = found.names
         mine = {f"ros{version}"} & set(found.versions) if version else set()
         versions = {v: found.versions[v] for v in (mine or found.versions)}
+        present = {child.tag for child in _children(element)}
         for child in _children(element):
             if child.tag in names:
                 continue
@@ -123,7 +124,13 @@ def gazebo_plugin_unknown_parameter(robot):
             classic = found.family == vocabulary.GZ and child.tag in vocabulary.classic_counterpart(found.key)
             if not close and not classic:
                 continue
-            if close:
+            given = [right for right in close if right in present]
+            for right in given:  # a name the element gives already is no suggestion
+                del close[right]
+            if given and not close:
+                hint = (f"{_tag(given[0])}, the name it reads, is given beside it: remove "
+                        f"<{child.tag}>")
+            elif close:
                 hint = "did you mean " + " or ".join(
                     f"{_tag(right)}{'' if len(close) == 1 and not mine else ' (' + ', '.join(_VERSION.get(v, v) for v in vs) + ')'}"
                     for right, vs in close.items()) + "?"

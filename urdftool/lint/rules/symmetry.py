@@ -129,10 +129,12 @@ def _analyse(robot):
         copied = above is not None and pairs.get(above) is not None and \
             pairs[above].kind == "copy"
         turn = _carry(frames, above) if above is not None else None
-        if residual <= tolerance and _translated_copy(found, frames[left][1], frames[right][1],
-                                                          kept):
+        if residual <= tolerance and not _siblings(robot, left, right) and \
+                _translated_copy(found, frames[left][1], frames[right][1], kept):
             # the right frame is the left one's, turned as no mirror image is (a hand mounted
-            # at 45 degrees on both arms): one product carried across, not mirrored
+            # at 45 degrees on both arms): one product carried across, not mirrored. Two
+            # joints of one link (a gripper's fingers) share its frame whatever it is turned
+            # to: at mirror-image places they are each other's mirror image
             pairs[(left, right)] = _Pair("copy", residual, _carry(frames, (left, right)))
         elif residual <= tolerance and not copied:
             pairs[(left, right)] = _Pair("mirror", residual)
@@ -177,6 +179,13 @@ def _copied_limbs(robot, frames, pairs) -> None:
         if found.kind in ("mirror", "off") and root(pair) in copied and found.copy_turn is None:
             left, right = pair
             found.copy_turn = mat3.multiply(frames[right][1], mat3.transpose(frames[left][1]))
+
+
+def _siblings(robot, left: str, right: str) -> bool:
+    """Whether joints ``left`` and ``right`` hang from one link."""
+    ends = robot.ends()
+    parents = {ends[robot.joints[name]]["parent"][1] for name in (left, right)}
+    return len(parents) == 1 and None not in parents
 
 
 def _in_line(robot, a, b) -> bool:
