@@ -392,7 +392,8 @@ def _candidates_in(folder: Path, pattern: str) -> tuple[tuple[Path, str | None],
         elif kind == "link":  # where a link leads is looked at only inside its folder
             kind = kind_of(path) or "link"
             why = None if kind == "file" else "a symbolic link to nothing" if kind == "link" \
-                else f"a link to a {'folder' if kind == 'folder' else 'named pipe or device'}"
+                else "a link to a folder" if kind == "folder" else \
+                "a link to a named pipe or device"
         else:
             why = None if kind == "file" else "a folder" if kind == "folder" else \
                 "a named pipe or device, not a regular file"

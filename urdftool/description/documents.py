@@ -519,7 +519,7 @@ def _read_text(path: Path, result, as_: str, limit: int = MAX_SIZE) -> str | Non
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as error:  # (Python's words named a position in bytes)
-        result.line = data.count(b"\n", 0, error.start) + 1
+        result.line = line_at(data, error.start)
         result.problem = (f"not UTF-8 text: byte 0x{data[error.start]:02x} on line "
                           f"{result.line} ({error.reason})")
     return None
