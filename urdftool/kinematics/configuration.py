@@ -511,6 +511,7 @@ class _Text:
                 size += len(piece)
         if not added:
             return False
+        # line ends: json's (LF only, as JSONDecodeError.lineno counts them in the whole text)
         self.lines += self.text.count("\n", 0, self.at)
         self.text, self.at = self.text[self.at:] + "".join(added), 0
         return True
@@ -549,7 +550,7 @@ class _Text:
         return made
 
     def line(self, at: int) -> int:
-        """The line of the file that ``at`` in the text is on."""
+        """The line of the file that ``at`` in the text is on (line ends: json's, LF only)."""
         return self.lines + self.text.count("\n", 0, at) + 1
 
 
@@ -591,7 +592,7 @@ def _json_values(data: bytes):
                     raise text.error("Expecting ',' delimiter", text.at - 1)
                 comma = (text.text, text.at - 1, text.lines)  # (its line counted if said)
                 if text.skip_space() == "]" and _TRAILING_COMMA is not None:
-                    raise text.error(_TRAILING_COMMA, text.at,
+                    raise text.error(_TRAILING_COMMA, text.at,  # (line ends: json's)
                                      comma[2] + comma[0].count("\n", 0, comma[1]) + 1)
     if text.skip_space():
         raise text.error("Extra data", text.at)
