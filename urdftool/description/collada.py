@@ -87,11 +87,13 @@ def _child(element, name: str):
     return next(element.iterchildren("{*}" + name), None)
 
 
-def _numbers(element, dtype, what: str):
-    """The whitespace-separated numbers of ``element``'s text as a numpy array."""
+def _numbers(element, dtype, what: str, text: str | None = None):
+    """The whitespace-separated numbers of ``element``'s text (``text`` when it was read
+    already) as a numpy array."""
     import numpy as np
 
-    text = element.text or ""
+    if text is None:
+        text = element.text or ""
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # numpy warns, and stops, at text that is no number
         try:
@@ -112,6 +114,24 @@ def _floats32(element, what: str, count: int | None = None):
                        f"expected {count}")
     with np.errstate(over="ignore"):
         return values.astype(np.float32)
+
+
+def _whole_numbers(element, what: str, stride: int = 1, offset: int = 0):
+    """(how many whole numbers ``element``'s text holds, the int64 array of those at
+    ``offset``, ``offset + stride``, ...: a ``<p>``'s column of one input), read in bulk when
+    the text is long and plain (:mod:`urdftool.description.number_lists`); the column is
+    whole only when the count is a multiple of ``stride``."""
+    import numpy as np
+
+    from urdftool.description import number_lists
+
+    text = element.text or ""
+    if len(text) >= number_lists.BULK:
+        found = number_lists.whole_numbers(text, stride, offset)
+        if found is not None:
+            return found
+    numbers = _numbers(element, "int64", what, text)
+    return len(numbers), numbers if stride == 1 else np.ascontiguousarray(numbers[offset::stride])
 
 
 def _joined(indices: list):
@@ -301,42 +321,40 @@ class _Document:
         blocks = _children(primitive, "p")
         if kind == "polylist":
             blocks = blocks[:1]  # pycollada reads the first; a polylist has one
-        indices = [_numbers(p, "int64", f"<{kind}><p>") for p in blocks]
-        for index in indices:
-            if len(index) % stride:
-                raise _corrupt(f"<{kind}> (line {line}) has {len(index)} indices in <p>, not a "
+        # each <p>'s count of indices, and its VERTEX column (the other inputs are not used)
+        columns = [_whole_numbers(p, f"<{kind}><p>", stride, offset) for p in blocks]
+        for count, _ in columns:
+            if count % stride:
+                raise _corrupt(f"<{kind}> (line {line}) has {count} indices in <p>, not a "
                                f"multiple of its {stride} inputs")
+        held = sum(count for count, _ in columns)  # indices of every input
+        corners = _joined([column for _, column in columns])
         if kind == "triangles":
-            corners = _joined(indices)
             counts = None
-            if len(corners) % (3 * stride):
-                raise _corrupt(f"<triangles> (line {line}) has {len(corners)} indices, not "
+            if held % (3 * stride):
+                raise _corrupt(f"<triangles> (line {line}) has {held} indices, not "
                                f"three corners of {stride} inputs each")
         elif kind == "polylist":
             vcount = _child(primitive, "vcount")
             if vcount is None:
                 raise _corrupt(f"<polylist> (line {line}) has no <vcount>")
-            counts = _numbers(vcount, "int64", "<polylist><vcount>")
-            corners = indices[0] if indices else np.zeros(0, dtype=np.int64)
-            if np.any(counts < 0) or np.any(counts > len(corners) // stride) or \
-                    int(counts.sum()) * stride != len(corners):
+            counts = _whole_numbers(vcount, "<polylist><vcount>")[1]
+            if np.any(counts < 0) or np.any(counts > held // stride) or \
+                    int(counts.sum()) * stride != held:
                 raise _corrupt(f"<polylist> (line {line}): <vcount> counts {int(counts.sum())} "
-                               f"corners, <p> holds {len(corners) // stride}")
+                               f"corners, <p> holds {held // stride}")
         else:
-            counts = np.array([len(index) // stride for index in indices], dtype=np.int64)
-            corners = _joined(indices)
-        triangles = len(corners) // (3 * stride) if counts is None else \
+            counts = np.array([count // stride for count, _ in columns], dtype=np.int64)
+        triangles = held // (3 * stride) if counts is None else \
             int(np.maximum(counts - 2, 0).sum())
         declared = primitive.get("count")
-        expected = len(corners) // (3 * stride) if kind == "triangles" else len(counts)
+        expected = held // (3 * stride) if kind == "triangles" else len(counts)
         if declared is not None and _int_attribute(primitive, "count") != expected:
             raise _corrupt(f"<{kind}> (line {line}) has count=\"{declared}\" but holds "
                            f"{expected} {'triangles' if kind == 'triangles' else 'polygons'}")
         if before + triangles > self.max_triangles:
             raise ColladaProblem("too-large", f"a geometry has over {self.max_triangles} "
                                               "triangles")
-        if stride > 1:  # one contiguous copy of the VERTEX column, read several times below
-            corners = np.ascontiguousarray(corners.reshape(-1, stride)[:, offset])
         if counts is not None and len(counts) and counts.min() == counts.max() == 3:
             counts = None  # triangles only: each its own fan
         if counts is not None:  # fans: (first, j, j + 1) for each polygon of k >= 3 corners
