@@ -246,6 +246,23 @@ def test_collada_count_matches_trimesh_on_a_plain_mesh(tmp_path):
     assert triangle_count(tmp_path / "m.dae") == len(sphere.faces) == 1280
 
 
+@pytest.mark.parametrize("offset", ["\u00b2", "9" * 5000])
+def test_collada_input_offset_int_refuses_is_counted_without_a_traceback(tmp_path, offset):
+    """An input's offset that str.isdigit() takes and int() refuses ('²', or past Python's
+    4,300 digits) was a ValueError in every mesh rule (U900): counted as no offset."""
+    (tmp_path / "m.dae").write_text(
+        '<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">'
+        '<library_geometries><geometry id="g"><mesh><source id="p">'
+        '<float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array></source>'
+        '<vertices id="v"><input semantic="POSITION" source="#p"/></vertices>'
+        f'<triangles count="1"><input semantic="VERTEX" source="#v" offset="{offset}"/>'
+        '<p>0 1 2</p></triangles></mesh></geometry></library_geometries>'
+        '<library_visual_scenes><visual_scene id="s"><node><instance_geometry url="#g"/>'
+        '</node></visual_scene></library_visual_scenes>'
+        '<scene><instance_visual_scene url="#s"/></scene></COLLADA>')
+    assert triangle_count(tmp_path / "m.dae") == 1
+
+
 def _glb_with_nodes(path: Path, extra_nodes: int) -> None:
     """A GLB of one 320-triangle sphere that ``extra_nodes`` more nodes name again."""
     import json

@@ -16,6 +16,7 @@ from pathlib import Path
 from urdftool.description.collada import parser, tag
 from urdftool.description.files import read_regular
 from urdftool.description.inputs import MAX_MESH_BYTES
+from urdftool.numbers import is_decimal
 
 _CHUNK = 1 << 20
 # OBJ face corners are counted over bytes, so that no text decoding trimesh may choose finds
@@ -115,8 +116,10 @@ def _numbers(text: str | None) -> int:
 def _primitive_triangles(primitive) -> int:
     """Triangles pycollada and trimesh make of one ``<triangles>``/``<polylist>``/... element:
     every ``<p>`` holds one index per input offset per corner; a polygon of k corners is k - 2."""
-    offsets = [int(c.get("offset", "0")) for c in primitive
-               if tag(c) == "input" and c.get("offset", "0").isdigit()]
+    offsets = [int(c.get("offset", "0")) for c in primitive  # (ASCII digits int() takes:
+               # '²' is a digit to str.isdigit(), and past 4,300 digits int() refuses)
+               if tag(c) == "input" and is_decimal(c.get("offset", "0"))
+               and len(c.get("offset", "0")) <= 18]
     stride = max(offsets, default=0) + 1
     corners = [_numbers(c.text) // stride for c in primitive if tag(c) == "p"]
     kind = tag(primitive)
