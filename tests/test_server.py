@@ -797,6 +797,26 @@ def test_a_settings_file_another_user_owns_is_shown_once_as_the_check_says_it(of
         f"urdftool: settings file '{tmp_path / 'urdftool.toml'}' not read: it belongs to another user")
 
 
+def test_the_settings_file_not_read_is_shown_with_no_live_link(offline_server, tmp_path,
+                                                               monkeypatch):
+    """The path of the settings file not read is the repository's own text: its pop-up is
+    escaped as every pop-up is (escape.notification), a folder named '[x](command:...)' no
+    link VS Code would run."""
+    from conftest import another_users
+    from urdftool.server import check_robot
+
+    server, _ = offline_server
+    shown = []
+    monkeypatch.setattr(server, "window_show_message", lambda params: shown.append(params.message))
+    folder = tmp_path / "[x](command:workbench.action.terminal.new)"
+    folder.mkdir()
+    (folder / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    another_users(folder / "urdftool.toml", monkeypatch)
+    robot = str(write_robot(folder))
+    server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=1)
+    assert len(shown) == 1 and "](command:" not in shown[0] and "] (command:" in shown[0]
+
+
 def test_the_record_of_a_check_says_which_changes_concern_a_robot(offline_server, tmp_path):
     from urdftool.server import check_robot
 

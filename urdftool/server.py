@@ -680,8 +680,11 @@ class UrdftoolServer(LanguageServer):
             if why not in self.unread_shown:
                 self.unread_shown.add(why)
                 self._log(types.MessageType.Warning, f"urdftool: {why}")
-                self.window_show_message(types.ShowMessageParams(
-                    type=types.MessageType.Warning, message=f"urdftool: {why}"))
+                from urdftool.report.escape import notification
+
+                self.window_show_message(types.ShowMessageParams(  # (a path in it: escaped
+                    # as every pop-up is, its links never live)
+                    type=types.MessageType.Warning, message=notification(f"urdftool: {why}")))
         stale = self._stale(outcome)
         if stale:  # it read an older version: the newer one's job publishes; a buffer closed
             if robot not in stale and any(path not in self.open for path in stale):
