@@ -167,6 +167,11 @@ class FileResult(Record):
         the robot's text where it was built (:attr:`~urdftool.description.robot.Robot.
         sources`, the one owner of what it read), kept with the result; None when not known
         (no argument given, a robot that did not load)
+    notes: what its check says beside its findings, in words, as ``urdftool check`` says it
+        on standard error: the settings files above it not read
+        (:attr:`~urdftool.lint.settings.FileSettings.skipped`, decided once, by the settings
+        that applied to it; the run's :attr:`~urdftool.lint.runner.Run.notes`, the language
+        server's pop-ups)
     """
 
     path: str
@@ -177,14 +182,15 @@ class FileResult(Record):
     record: object | None
     read: tuple
     arguments: list | None
+    notes: tuple
 
     __slots__ = ("path", "findings", "robot", "strict", "companions", "record", "read",
-                 "arguments")
+                 "arguments", "notes")
     _shown = ("path", "findings", "robot", "strict", "companions")
 
     def __init__(self, path: str, findings: list[Finding], robot: object | None = None,
                  strict: bool = False, companions: list[str] = NEW, record: object | None = None,
-                 read: tuple = (), arguments: list | None = None) -> None:
+                 read: tuple = (), arguments: list | None = None, notes: tuple = ()) -> None:
         self.path = path
         self.findings = findings
         self.robot = robot
@@ -193,6 +199,7 @@ class FileResult(Record):
         self.record = record
         self.read = read
         self.arguments = arguments
+        self.notes = notes
 
     @property
     def unexpanded(self) -> bool:
