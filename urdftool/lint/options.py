@@ -14,18 +14,6 @@ from urdftool.diagnostics import Finding, Severity
 from urdftool.records import Frozen, NEW, Record
 
 
-def under_ci(environ=None) -> bool:
-    """Whether this run is a CI job's: ``CI`` set (GitHub Actions, GitLab CI and most services
-    set ``CI=true``) to anything but ``0``, ``false`` or ``no``. The one answer of the safe
-    mode's default (:func:`urdftool.lint.settings.env_allowed`) and of the cache's
-    (:func:`urdftool.lint.cache.default_folder`): ``CI=false`` turned the cache off but left
-    the full mode on, and ``CI=" "`` the same."""
-    import os
-
-    value = (os.environ if environ is None else environ).get("CI", "")
-    return value.strip().lower() not in ("", "0", "false", "no")
-
-
 class Selection(Frozen):
     """Which rules run: codes, code prefixes (``U2``) or names (``inverted-limits``).
 
