@@ -132,6 +132,19 @@ def test_a_value_pyyaml_cannot_construct_is_u601_an_error_where_every_reader_fai
         ("U601", line, severity)]
 
 
+def test_a_rosparam_angle_that_is_no_number_is_u601_at_its_line(tmp_path):
+    """``!degrees abc`` in a ROS 1 controllers file: rosparam's constructor raises and roslaunch
+    refuses the file (no controller gets its parameters); it was read as the text 'abc', and
+    nothing said. One it reads is a number in radians (``!radians pi/2``), no finding."""
+    robot = HEAD_ROBOT.format(body="")
+    layout = "humanoid:\n  c:\n    type: a/B\n    joints: [head_joint]\n    angle: VALUE\n"
+    for value, expected in (("!degrees abc", [("U601", 5, Severity.ERROR)]), ("!radians pi/2", [])):
+        _, findings = check_folder(tmp_path / value[1:4], {"robot.urdf": robot,
+                                                           "config/c.yaml": layout.replace("VALUE", value)})
+        assert [(f.code, f.line, f.severity) for f in findings if f.code in ("U601", "U900")] == \
+            expected, value
+
+
 # --- the example robots, broken in a temporary copy ------------------------------------------
 
 @pytest.mark.parametrize("file, old, new, code, message", [

@@ -119,7 +119,10 @@ def malformed_controllers_yaml(robot):
     2 parameter file it is a warning: ROS 2's parser reads it as written (no dates, no tag but
     ``!!str``), while a launch file or tool loading the file with PyYAML fails. An alias
     (``*defaults``, ``<<: *defaults``) in a ROS 2 parameter file is a warning too: ROS 2's parser
-    refuses every alias, PyYAML reads it.
+    refuses every alias, PyYAML reads it. rosparam's ``!degrees`` and ``!radians`` are read as
+    it reads them (``!radians 2*pi``); one it makes no number of (``!degrees abc``,
+    ``!radians 1/0``) is an error at its line: roslaunch refuses the file, and ROS 2's MoveIt,
+    which reads the tags as ``float(text)``, fails too.
 
     Bad: ``joints: [head_pan, head_tilt`` (unclosed list)
     Good: ``joints: [head_pan, head_tilt]``
