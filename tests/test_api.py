@@ -98,6 +98,25 @@ def test_load_and_its_errors(tmp_path):
 
 
 
+@pytest.mark.parametrize("ci", ["1", ""], ids=["CI", "no-CI"])
+def test_load_takes_the_safe_mode_of_check_under_ci(tmp_path, monkeypatch, ci):
+    """``load`` left unset reads what ``check`` reads (:func:`urdftool.description.files.
+    env_allowed`, the one owner of the mode): under ``CI`` no environment variable a robot
+    names. It read ``$(optenv SECRET tip)`` under CI (its default was True), a job's secret
+    made a link's name; without CI, and with ``allow_env=True`` given, the variable is read."""
+    robot = tmp_path / "r.urdf.xacro"
+    robot.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                     '<link name="$(optenv URDFTOOL_SECRET_30 tip)"/></robot>\n')
+    (tmp_path / ".git").mkdir()
+    monkeypatch.setenv("CI", ci)
+    monkeypatch.setenv("URDFTOOL_SECRET_30", "s3cr3t")
+    assert list(urdftool.load(robot).links) == ["tip" if ci else "s3cr3t"]
+    assert list(urdftool.load(robot, allow_env=True).links) == ["s3cr3t"]
+    assert list(urdftool.load(robot, allow_env=False).links) == ["tip"]
+    assert [result.robot.links.keys() for result in [urdftool.check_file(robot)]] == [
+        urdftool.load(robot).links.keys()]  # (check's own mode, the same)
+
+
 @pytest.mark.parametrize("order", [("a", "b"), ("b", "a")], ids=["a-b", "b-a"])
 def test_settings_apply_per_target(tmp_path, order):
     for name in "ab":

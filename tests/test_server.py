@@ -778,23 +778,59 @@ def _package(root: Path) -> Path:
     return package / "urdf" / "robot.urdf.xacro"
 
 
-def test_a_settings_file_another_user_owns_is_shown_once_as_the_check_says_it(offline_server,
-                                                                              tmp_path, monkeypatch):
-    """urdftool check says it did not read another user's settings file outside a repository
-    (lint.settings.foreign); the server, checking with the same core, said nothing."""
+def _below_foreign_settings(offline_server, folder: Path, monkeypatch) -> tuple:
+    """(server, the pop-ups it shows, a robot) for a robot in ``folder`` below a settings file
+    another user owns (lint.settings.foreign: not read)."""
     from conftest import another_users
-    from urdftool.server import check_robot
 
     server, _ = offline_server
     shown = []
     monkeypatch.setattr(server, "window_show_message", lambda params: shown.append(params.message))
-    (tmp_path / "urdftool.toml").write_text('ignore = ["U204"]\n')
-    another_users(tmp_path / "urdftool.toml", monkeypatch)
-    robot = str(write_robot(tmp_path))
+    (folder / "urdftool.toml").write_text('ignore = ["U204"]\n')
+    another_users(folder / "urdftool.toml", monkeypatch)
+    return server, shown, str(write_robot(folder))
+
+
+def test_a_settings_file_another_user_owns_is_shown_once_as_the_check_says_it(offline_server,
+                                                                              tmp_path, monkeypatch):
+    """urdftool check says it did not read another user's settings file outside a repository
+    (lint.settings.foreign); the server, checking with the same core, said nothing."""
+    from urdftool.server import check_robot
+
+    server, shown, robot = _below_foreign_settings(offline_server, tmp_path, monkeypatch)
     for ticket in (1, 2):
         server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=ticket)
     assert len(shown) == 1 and shown[0].startswith(
         f"urdftool: settings file '{tmp_path / 'urdftool.toml'}' not read: it belongs to another user")
+
+
+def test_the_pop_up_of_a_settings_file_not_read_is_the_checks_own_note(offline_server, tmp_path,
+                                                                     monkeypatch):
+    """Whether a settings file was not read is decided once, by the check
+    (:attr:`FileResult.notes`, as ``urdftool check`` and the pytest plugin say it): the server
+    looked the settings up again after the check (``settings_for`` a second time) to learn it,
+    a second owner of the fact and the work done twice. Its pop-up shows the check's notes,
+    and only those."""
+    from urdftool.lint import runner, settings
+    from urdftool.records import replace
+    from urdftool.server import check_robot
+
+    server, shown, robot = _below_foreign_settings(offline_server, tmp_path, monkeypatch)
+    calls = []
+    looked_up = settings.settings_for
+    monkeypatch.setattr(settings, "settings_for", lambda path: calls.append(path) or
+                        looked_up(path))
+    outcome = check_robot(robot, {}, server.workspace.position_codec)
+    assert len(calls) == 1  # the check's own look-up, none after it
+    assert outcome.notes and outcome.notes == tuple(runner.check_file(robot).notes)
+    checked = runner.check_file
+    for notes in ((), ("a note of the check",)):  # the foreign file is still there: the
+        shown.clear()  # pop-up follows the check's notes, never a look of its own
+        monkeypatch.setattr(runner, "check_file", lambda path, **options: replace(
+            checked(path, **options), notes=notes))
+        server.notes_shown.clear()
+        server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=1)
+        assert shown == [f"urdftool: {note}" for note in notes]
 
 
 def test_the_settings_file_not_read_is_shown_with_no_live_link(offline_server, tmp_path,
@@ -802,17 +838,11 @@ def test_the_settings_file_not_read_is_shown_with_no_live_link(offline_server, t
     """The path of the settings file not read is the repository's own text: its pop-up is
     escaped as every pop-up is (escape.notification), a folder named '[x](command:...)' no
     link VS Code would run."""
-    from conftest import another_users
     from urdftool.server import check_robot
 
-    server, _ = offline_server
-    shown = []
-    monkeypatch.setattr(server, "window_show_message", lambda params: shown.append(params.message))
     folder = tmp_path / "[x](command:workbench.action.terminal.new)"
     folder.mkdir()
-    (folder / "urdftool.toml").write_text('ignore = ["U204"]\n')
-    another_users(folder / "urdftool.toml", monkeypatch)
-    robot = str(write_robot(folder))
+    server, shown, robot = _below_foreign_settings(offline_server, folder, monkeypatch)
     server._publish(check_robot(robot, {}, server.workspace.position_codec), ticket=1)
     assert len(shown) == 1 and "](command:" not in shown[0] and "] (command:" in shown[0]
 

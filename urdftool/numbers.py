@@ -56,6 +56,7 @@ MAX_COORDINATE = 2.0 ** 62 / 1e8
 # conversion is quadratic, so Python refuses longer ones with a ValueError)
 MAX_INT_DIGITS = 4300
 INT64 = (-2 ** 63, 2 ** 63 - 1)  # what a ROS 2 integer parameter (int64_t), and numpy's sizes, hold
+INT32 = (-2 ** 31, 2 ** 31 - 1)  # what a ROS 1 integer parameter holds (XML-RPC's <i4>)
 _DIGITS = re.compile(r"[0-9](?:_?[0-9])*")
 
 
@@ -123,6 +124,11 @@ def double_problem(value: int) -> NumberRefused | None:
 def in_int64(value: int) -> bool:
     """Whether the integer ``value`` is one an int64 holds (:data:`INT64`)."""
     return INT64[0] <= value <= INT64[1]
+
+
+def in_int32(value: int) -> bool:
+    """Whether the integer ``value`` is one an int32 holds (:data:`INT32`)."""
+    return INT32[0] <= value <= INT32[1]
 
 
 def power(base, exponent):

@@ -119,7 +119,8 @@ class Outcome:
         (:class:`~urdftool.description.record.Record`), None when it raised
     error: why the check raised, instead of findings: a UrdftoolError's message (a settings
         file in error: ``user_error``) or a traceback (a bug)
-    unread: the settings files above it not read (another user's, in no repository:
+    notes: what the check said beside its findings (:attr:`urdftool.lint.options.FileResult.
+        notes`: the settings files above it not read, another user's in no repository,
         :func:`urdftool.lint.settings.foreign`), in words: shown once each, as ``urdftool
         check`` says them
     """
@@ -132,7 +133,7 @@ class Outcome:
     error: str | None = None
     user_error: bool = False
     seconds: float = 0.0
-    unread: tuple = ()
+    notes: tuple = ()
 
 
 def robots_for(path: str, kind: str | None) -> list[str]:
@@ -182,7 +183,7 @@ def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
     finally:
         outcome.seconds = time.monotonic() - started
         outcome.versions = {path: buffers[path].version for path in served}
-    outcome.unread = _settings_unread(robot)
+    outcome.notes = tuple(result.notes)
     sources = {}
     if result.robot is not None:
         sources = {os.path.abspath(name): data.decode("utf-8", "replace")
@@ -191,18 +192,6 @@ def check_robot(robot: str, buffers: dict[str, Buffer], codec) -> Outcome:
     outcome.by_path = diagnostics_by_path(result.findings, texts, codec, uri_of=texts.uri)
     outcome.by_path.setdefault(robot, [])
     return outcome
-
-
-def _settings_unread(robot: str) -> tuple:
-    """The settings files above ``robot`` its check did not read (:attr:`urdftool.lint.
-    settings.Settings.skipped`), as the check looked for them."""
-    from urdftool.errors import UrdftoolError
-    from urdftool.lint.settings import settings_for
-
-    try:
-        return settings_for(robot).skipped
-    except UrdftoolError:  # (a settings file in error: the check said so)
-        return ()
 
 
 class _Texts:
@@ -477,7 +466,7 @@ class UrdftoolServer(LanguageServer):
         self.pending: dict[str, asyncio.Task] = {}
         self.tickets = itertools.count(1)
         self.errors_shown: set[str] = set()
-        self.unread_shown: set[str] = set()  # the settings files not read, said
+        self.notes_shown: set[str] = set()  # the checks' notes (settings files not read), said
 
     # -- documents
 
@@ -676,9 +665,9 @@ class UrdftoolServer(LanguageServer):
                     type=types.MessageType.Error,
                     message=notification(f"urdftool: {what} {shown}: {headline}")))
             return
-        for why in outcome.unread:  # once each, as the check says it on every run
-            if why not in self.unread_shown:
-                self.unread_shown.add(why)
+        for why in outcome.notes:  # once each, as the check says it on every run
+            if why not in self.notes_shown:
+                self.notes_shown.add(why)
                 self._log(types.MessageType.Warning, f"urdftool: {why}")
                 from urdftool.report.escape import notification
 

@@ -533,7 +533,7 @@ def _every_command_on(robot, old, out):
                                      "$(env URDFTOOL_SECRET_29)"])
 def test_every_command_under_ci_reads_no_environment_variable_a_robot_names(
         written, tmp_path, monkeypatch, analysis_imported):
-    """Under ``CI`` every command takes check's safe mode (``lint.settings.env_allowed``):
+    """Under ``CI`` every command takes check's safe mode (``description.files.env_allowed``):
     ``crosscheck`` loaded with the full mode, and its report named the link
     ``$(optenv URDFTOOL_SECRET_29 tip)`` made from the job's secret. Each command of the app's
     table runs on a robot naming the variable, under ``CI=1`` and (the control: the test can

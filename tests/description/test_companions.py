@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 import textwrap
 
@@ -101,9 +102,12 @@ def test_malformed_yaml_is_located_where_the_bracket_opened(tmp_path):
 
 
 def test_unknown_yaml_tags_load_as_plain_values(tmp_path):
-    # ur_description/config/*/joint_limits.yaml uses a custom !degrees tag
-    path = write(tmp_path, {"c.yaml": "joint_limits:\n  a: {max_position: !degrees 360}\n"}) / "c.yaml"
-    assert read_yaml(path).data["joint_limits"]["a"]["max_position"] == "360"
+    # ur_description/config/*/joint_limits.yaml uses rosparam's !degrees tag: read as rosparam
+    # (and ROS 2 MoveIt's launch_param_builder) reads it, in radians; a tag nobody knows is text
+    path = write(tmp_path, {"c.yaml": "joint_limits:\n  a: {max_position: !degrees 360, "
+                                      "min_position: !foo -360}\n"}) / "c.yaml"
+    limits = read_yaml(path).data["joint_limits"]["a"]
+    assert limits["max_position"] == pytest.approx(2 * math.pi) and limits["min_position"] == "-360"
 
 
 def test_ros_joint_limits_yaml_is_not_a_spec_nor_controllers(corpus):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from urdftool.description.documents import read_srdf, read_yaml
@@ -250,6 +252,57 @@ def test_an_integer_past_a_double_is_an_integer_to_a_launch_file(tmp_path):
     path = tmp_path / "x.launch.yaml"
     path.write_text("launch:\n- arg: {name: n, default: " + "1" * 400 + "}\n")
     assert read_yaml(path, parameters=False).data["launch"][0]["arg"]["default"] == int("1" * 400)
+
+
+ROSPARAM_ANGLES = [  # (value written, what rosparam makes of it: radians, or its error)
+    ("!degrees 180", math.pi), ("!degrees ' 90 '", math.pi / 2), ("!degrees deg(90)", math.pi / 2),
+    ("!degrees 1_80", math.pi), ("!radians 2*pi", 2 * math.pi), ("!radians -pi/2", -math.pi / 2),
+    ("!radians rad(pi/4)", math.pi / 4), ("!radians 1.5", 1.5), ("!radians (1+1)**2", 4.0),
+    ("!degrees abc", "invalid degree value: abc"), ("!degrees ''", "invalid degree value: "),
+    ("!degrees 90deg", "invalid degree value: 90deg"),
+    ("!degrees deg(ninety)", "invalid degree value: deg(ninety)"),
+    ("!radians 2*", "invalid radian expression: 2*"), ("!radians abc", "name 'abc' is not defined"),
+    ("!radians 1/0", "division by zero"), ("!radians pipe", "no attribute 'pipe'"),
+    ("!radians '\"x\"'", "could not convert string to float"), ("!radians 10**400", "too large"),
+    ("!degrees [1]", "expected a scalar node, but found sequence"),
+]
+
+
+@pytest.mark.parametrize("written, made", ROSPARAM_ANGLES)
+def test_rosparams_angles_are_read_as_rosparam_reads_them_in_a_ros1_parameter_file(tmp_path, written,
+                                                                                    made):
+    """rosparam (ROS 1: roslaunch's <rosparam> and ``rosparam load``) adds ``!degrees`` and
+    ``!radians`` to PyYAML's safe loader, and reads ``deg(N)`` and ``rad(EXPR)`` as them:
+    ``float(N) * pi / 180``, ``float(eval(EXPR))`` with ``pi`` for math.pi. A value it cannot
+    make a number of raises, and roslaunch refuses the file ("contains invalid YAML"): no
+    parameter of it is set. Each was read as its text, silently; now a number as rosparam
+    makes it, or the file's YAML error at its line in rosparam's (Python's) words. A ROS 2
+    parameter file, and a launch file, read them as before (their readers have no such tags)."""
+    path = tmp_path / "c.yaml"
+    path.write_text(f"first: 1\nangle: {written}\n")
+    parsed = read_yaml(path)
+    if isinstance(made, float):
+        assert parsed.problem is None and parsed.data["angle"] == pytest.approx(made)
+    else:
+        assert parsed.data is None and parsed.line == 2 and made in parsed.problem, parsed.problem
+    path.write_text(f"n:\n  ros__parameters:\n    angle: {written}\n")
+    assert not isinstance(read_yaml(path).data["n"]["ros__parameters"]["angle"], float)
+    path.write_text(f"launch:\n- arg: {{name: n, default: {written}}}\n")
+    assert read_yaml(path, parameters=False).problem is None
+
+
+def test_a_radian_expression_rosparam_evaluates_beyond_arithmetic_is_left_as_written(tmp_path):
+    """``float(eval(EXPR))`` runs any Python: an expression past numbers, pi and arithmetic
+    (a call, a name rosparam's module may hold, a power too large to compute) is neither
+    evaluated nor judged; it is read as its text, as before. So is what ROS 2's MoveIt reads
+    and rosparam not (``inf``: launch_param_builder's ``float(text)``), and ``deg(90)`` written
+    plain (rosparam's, text to ROS 2's readers)."""
+    path = tmp_path / "c.yaml"
+    for written in ("!radians math.sin(1)", "!radians abs(-1)", "!radians os", "!radians 9**9**9",
+                    "!radians NS", "!radians inf", "deg(90)", "rad(x)"):
+        path.write_text(f"angle: {written}\n")
+        parsed = read_yaml(path)
+        assert parsed.problem is None and isinstance(parsed.data["angle"], str), written
 
 
 def _shape(value):

@@ -33,7 +33,8 @@ XACRO_IN_URDF = "U007"
 def assert_parity(name: str, reference, result) -> None:
     errors = [f for f in result.findings if f.severity.value == "error"]
     codes = {f.code for f in errors}
-    refused = codes & URDFDOM
+    # (a finding its rule says urdfdom takes is none of its refusals: engine.urdfdom_refusals)
+    refused = {f.code for f in errors if not f.urdfdom_takes} & URDFDOM
     said = reference.stdout + reference.stderr
     parts = [f for f in result.findings if f.code in URDFDOM and f.severity.value != "error"]
     if reference.returncode != 0:
@@ -95,6 +96,12 @@ def _loop_below(size: int) -> str:
     links = [f"l{i}" for i in range(size)]
     return _link("r", *links) + _joint("j0", "r", "l0") + "".join(
         _joint(f"j{i + 1}", links[i], links[(i + 1) % size]) for i in range(size))
+
+
+def _material(name: str | None) -> str:
+    """A top-level red material named ``name`` (None: without the attribute)."""
+    named = "" if name is None else f' name="{name}"'
+    return f'<material{named}><color rgba="1 0 0 1"/></material>'
 
 
 # Shapes of tree that urdfdom handles badly or differently, each with what check_urdf does on it
@@ -216,6 +223,27 @@ SHAPES = {
     "a mimic chain without a loop": (_link("r", "a", "b", "c") + _joint("ja", "r", "a", "")
                                      + _joint("jb", "r", "b", "ja") + _joint("jc", "r", "c", "jb"),
                                      "accepts", set(), AGREES, (POSES, POSES)),
+    # materials (U405): urdfdom refuses a top-level name given twice ("material 'm' is not
+    # unique"), a missing name counting as '', and logs the rest
+    "two top-level materials named alike": (_material("m") * 2 + _link("r"), "refuses",
+                                            {"U405"}, AGREES, (REFUSES, REFUSES)),
+    "two top-level materials without a name": (_material(None) * 2 + _link("r"), "refuses",
+                                               {"U405"}, AGREES, (REFUSES, REFUSES)),
+    "a top-level material without a name": (_material(None) + _link("r"), "accepts", {"U405"},
+                                            "stricter: urdfdom logs 'Material must contain a "
+                                            "name attribute' and keeps it as ''; no visual can "
+                                            "name it", (POSES, POSES)),
+    "a top-level material without a colour": ('<material name="m"/>' + _link("r"), "accepts",
+                                              {"U405"}, "stricter: urdfdom logs 'Material [m] "
+                                              "color has no rgba'; a visual naming it has no "
+                                              "colour", (POSES, POSES)),
+    "a visual's material without a name": (
+        '<link name="r"><visual><geometry><box size="1 1 1"/></geometry><material><color '
+        'rgba="1 0 0 1"/></material></visual><collision><geometry><box size="1 1 1"/>'
+        "</geometry></collision></link>", "accepts", {"U405"}, "stricter: urdfdom stops "
+        "reading the link there ('Could not parse visual element', parseLink's failure "
+        "unread): the link has no visual and no collision (Pinocchio's geometry models of it "
+        "are empty)", (POSES, POSES)),
 }
 
 

@@ -310,7 +310,7 @@ def test_an_entry_that_is_a_link_is_not_followed(robot, tmp_path, kind):
 def test_the_default_is_off_under_ci():
     assert cache_module.default_folder({"CI": "true"}) is None
     # one answer with the safe mode's: CI=false turned the cache off, the full mode on
-    from urdftool.lint.settings import env_allowed
+    from urdftool.description.files import env_allowed
 
     for value in ("false", "0", "no", " ", "true", "1", "yes"):
         with pytest.MonkeyPatch.context() as patch:

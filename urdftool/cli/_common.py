@@ -196,7 +196,7 @@ def single_robot(command: str, words: list[str], arg_options: list[str],
     choices: {option: (value, allowed values)}, e.g. {"--format": (fmt, ("text", "json"))}
     problems: (is wrong, message) pairs for the command's own option checks
     load_options: passed to ``urdftool.description.load.load`` (``allow_env``: None, the
-        default, is the safe mode when ``CI`` is set, see lint.settings.env_allowed)
+        default, is the safe mode when ``CI`` is set, see description.files.env_allowed)
     """
     try:
         paths, args, packages = robot_inputs(words, arg_options, package_options)
@@ -326,11 +326,8 @@ def load_robot(path: str, args: dict[str, str], packages, **load_options):
     machine's, not the robot's; nothing was computed)."""
     from urdftool.errors import LoadError
     from urdftool.description.load import load
-    from urdftool.lint.settings import env_allowed
 
-    try:
-        # Under CI the safe mode is the default for every command, as for check.
-        load_options["allow_env"] = env_allowed(load_options.get("allow_env"))
+    try:  # (allow_env None: load's, check's, safe mode under CI)
         return load(path, xacro_args=args, packages=packages, **load_options)
     except LoadError as error:
         refuse_unloaded(path, error)

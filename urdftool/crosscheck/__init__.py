@@ -107,16 +107,15 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
     """Load ``path`` (URDF or xacro) with each of ``loaders`` (names; None: every one known)
     that is installed, each in a worker process within ``budget``, and compare.
 
-    allow_env: ``$(env)`` and files outside the repository allowed; None, as every command
-    and ``check``: the safe mode when ``CI`` is set (:func:`urdftool.lint.settings.env_allowed`;
-    this was True, and ``crosscheck`` under CI expanded ``$(optenv SECRET ...)`` into the
-    names it printed).
+    allow_env: ``$(env)`` and files outside the repository allowed; None, as every command,
+    ``check`` and ``load``: the safe mode when ``CI`` is set
+    (:func:`urdftool.description.files.env_allowed`; this was True, and ``crosscheck`` under CI
+    expanded ``$(optenv SECRET ...)`` into the names it printed).
 
     Raises UrdftoolError (LoadError, UsageError) when urdftool itself cannot load the file or
     a loader name is unknown."""
     from urdftool.description.load import load
     from urdftool.errors import UsageError
-    from urdftool.lint.settings import env_allowed
 
     names = list(LOADERS) if not loaders else list(dict.fromkeys(loaders))
     unknown = [name for name in names if name not in LOADERS]
@@ -126,7 +125,7 @@ def crosscheck(path: str, loaders=None, *, xacro_args=None, packages=None,
         raise UsageError(f"unknown loader '{unknown[0]}'; "
                          + choices("loaders", unknown[0], LOADERS))
     robot = load(path, xacro_args=xacro_args or {}, packages=packages or {},
-                 allow_env=env_allowed(allow_env))
+                 allow_env=allow_env)
     _refuse_files_urdftool_does_not_open(robot)
     present = [name for name in names if available(name)]
     missing = {name: LOADERS[name].install for name in names if name not in present}

@@ -11,6 +11,7 @@ import re
 from pathlib import Path
 
 from urdftool.diagnostics import Location, display_path, line_at, lines_of
+from urdftool.errors import shown_word
 from urdftool.description.files import TooLarge, read_regular
 from urdftool.description.xml import XmlProblem, entity_uses, merge_conflict, start_tag_lines, \
     tinyxml2_comments
@@ -117,10 +118,121 @@ def _loader():
                 return self.construct_yaml_seq(node)  # it; its first item alone was empty)
             return self.construct_yaml_map(node)
 
+        rosparam = False  # a ROS 1 parameter file: rosparam's tags are its (rosparam_angle)
+
+        def construct_angle(self, node):
+            if not self.rosparam:  # (a ROS 2 parameter file, a launch file: no such tag)
+                return self.construct_unknown(node.tag, node)
+            text = self.construct_scalar(node)
+            try:
+                made = rosparam_angle(node.tag, text)
+            except ValueError as error:
+                raise yaml.constructor.ConstructorError(None, None, (
+                    f"{error} (rosparam's {node.tag} makes no number of it: roslaunch refuses "
+                    "the file, setting none of its parameters)"), node.start_mark) from None
+            return text if made is None else made
+
     _Loader.add_constructor("tag:yaml.org,2002:map", _Loader.construct_yaml_map)
     _Loader.add_constructor("tag:yaml.org,2002:seq", _Loader.construct_yaml_seq)
     _Loader.add_multi_constructor("!", _Loader.construct_unknown)
+    for tag in ("!degrees", "!radians"):  # rosparam's own (its plain deg(N) and rad(EXPR),
+        # which ROS 2's readers take as text, stay text: which ROS reads the file is not known)
+        _Loader.add_constructor(tag, _Loader.construct_angle)
     return _Loader
+
+
+# rosparam's module's names (ROS 1, ros_comm's tools/rosparam/src/rosparam/__init__.py, Noetic):
+# the globals a ``!radians`` expression is evaluated with, besides Python's builtins
+_ROSPARAM_NAMES = frozenset((
+    "Binary", "GLOBALNS", "NAME", "NS", "OptionParser", "RosParamException",
+    "RosParamIOException", "base64", "construct_angle_degrees", "construct_angle_radians",
+    "construct_yaml_binary", "delete_param", "dump_params", "get_param", "get_param_server",
+    "get_ros_namespace", "list_params", "load_file", "load_str", "make_caller_id",
+    "make_global_ns", "math", "ns_join", "os", "pattern", "print_function", "print_params", "re",
+    "represent_foo", "represent_xml_binary", "rosgraph", "script_resolve_name", "set_param",
+    "set_param_raw", "socket", "sys", "upload_params", "yaml", "yamlmain"))
+
+
+def rosparam_angle(tag: str, text: str) -> float | None:
+    """The value rosparam (ROS 1) makes of ``text`` under ``tag`` (``!degrees``, ``!radians``),
+    in [rad], as its constructors do: ``float(N) * pi / 180`` (``deg(N)`` too);
+    ``float(eval(EXPR))`` with ``pi`` replaced by ``math.pi`` (``rad(EXPR)`` too). ROS 2's
+    MoveIt reads the file with launch_param_builder's tags: ``float(text)``, in degrees or
+    radians alike. A value neither makes a number of raises ValueError in rosparam's words (or
+    Python's, which roslaunch prints: "file ... contains invalid YAML"): every reader refuses
+    the file (PyYAML's own knows no such tag). None for what one of them reads and the other
+    not (``!radians inf``: ROS 2 only), and for an expression past numbers, ``pi`` and
+    arithmetic (a call, a name rosparam's module holds, a power too large to compute):
+    rosparam evaluates any Python; urdftool none."""
+    import math
+
+    if tag == "!degrees":
+        written = text.strip()[4:-1] if text.startswith("deg(") else text
+        try:
+            return float(written) * math.pi / 180.0
+        except ValueError:
+            raise ValueError(f"invalid degree value: {shown_word(text)}") from None
+    value = text.strip()
+    expression = value.replace("pi", "math.pi")
+    if expression.startswith("rad("):
+        expression = expression[4:-1]
+    import ast
+
+    try:
+        tree = ast.parse(expression, mode="eval")
+    except SyntaxError:  # (no number float() reads is a syntax error to Python)
+        raise ValueError(f"invalid radian expression: {shown_word(value)}") from None
+    except (ValueError, RecursionError, MemoryError):  # (an integer past this Python's
+        return None  # digits, not past Noetic's; nesting past this parser's depth)
+    try:
+        made = _arithmetic(tree.body)
+        return None if made is None else float(made)
+    except RecursionError:  # (a chain of 100,000 terms)
+        return None
+    except (ArithmeticError, TypeError, ValueError, NameError, AttributeError) as error:
+        try:
+            float(text)  # (launch_param_builder's reading: ROS 2's MoveIt takes it)
+            return None
+        except ValueError:
+            raise ValueError(f"!radians {shown_word(value)}: {shown_word(str(error))}") from None
+
+
+def _arithmetic(node):
+    """The value of an expression of constants, ``math``'s constants and arithmetic, as Python
+    computes it (raising as it raises); None for anything else, or a power past 10,000 bits."""
+    import ast
+    import builtins
+    import math
+    import operator
+
+    if isinstance(node, ast.Constant):
+        return node.value
+    if isinstance(node, ast.Name):
+        if node.id.startswith("__") or node.id in _ROSPARAM_NAMES or hasattr(builtins, node.id):
+            return None
+        raise NameError(f"name '{node.id}' is not defined")
+    if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and \
+            node.value.id == "math":
+        found = getattr(math, node.attr)  # (AttributeError as Python's: math has no 'pipe')
+        return found if isinstance(found, float) else None
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
+        operand = _arithmetic(node.operand)
+        return None if operand is None else (-operand if isinstance(node.op, ast.USub)
+                                             else +operand)
+    operators = {ast.Add: operator.add, ast.Sub: operator.sub, ast.Mult: operator.mul,
+                 ast.Div: operator.truediv, ast.FloorDiv: operator.floordiv,
+                 ast.Mod: operator.mod, ast.Pow: operator.pow}
+    if isinstance(node, ast.BinOp) and type(node.op) in operators:
+        left, right = _arithmetic(node.left), _arithmetic(node.right)
+        if left is None or right is None:
+            return None
+        if isinstance(node.op, ast.Pow) and isinstance(left, int) and isinstance(right, int) \
+                and abs(left) > 1 and right * max(abs(left), 2).bit_length() > 10_000:
+            return None
+        if any(isinstance(side, int) and side.bit_length() > 10_000 for side in (left, right)):
+            return None
+        return operators[type(node.op)](left, right)
+    return None
 
 
 _MERGE = "tag:yaml.org,2002:merge"
@@ -308,6 +420,7 @@ def _parsed_yaml(result: YamlFile, text: str, substituted, substitutions,
             loader = fast(text)
             loader.merge_repeated = result.ros2
             loader.lenient, loader.any_integer = result.ros2 and parameters, not parameters
+            loader.rosparam = parameters and not result.ros2
             result.data = loader.get_single_data()
             _as_ros2_reads(result, loader)
             return result
@@ -321,6 +434,7 @@ def _parsed_yaml(result: YamlFile, text: str, substituted, substitutions,
         return result
     loader.merge_repeated = result.ros2
     loader.lenient, loader.any_integer = result.ros2 and parameters, not parameters
+    loader.rosparam = parameters and not result.ros2
     try:
         result.data = loader.get_single_data()
         _as_ros2_reads(result, loader)

@@ -16,7 +16,8 @@ there is no other way to read. ``tests/description/test_files.py`` fails when a 
   :func:`walk`: those of a folder and of the folders below it;
 - :func:`real_path` and :func:`inside`: where links lead, whether a path stays in a folder;
   :func:`repository_root` and :func:`enclosing_root` say which folder that is;
-- :func:`environ`: an environment variable.
+- :func:`environ`: an environment variable; :func:`env_allowed`: whether a robot may name
+  them (and files outside its repository), the safe mode under CI (:func:`under_ci`).
 
 :func:`holds` compares an entry of a record with the disk, by the same functions, unrecorded:
 the result cache asks it, and reads nothing else of a robot's. urdftool's own files (the
@@ -538,6 +539,28 @@ def environ(name: str, variables=None) -> str | None:
     if variables is None:
         records.note(ENV, name, value)
     return value
+
+
+def under_ci(variables=None) -> bool:
+    """Whether this run is a CI job's: ``CI`` set (GitHub Actions, GitLab CI and most services
+    set ``CI=true``) to anything but ``0``, ``false`` or ``no``. The one answer of the safe
+    mode's default (:func:`env_allowed`) and of the cache's
+    (:func:`urdftool.lint.cache.default_folder`): ``CI=false`` turned the cache off but left
+    the full mode on, and ``CI=" "`` the same."""
+    value = (os.environ if variables is None else variables).get("CI", "")
+    return value.strip().lower() not in ("", "0", "false", "no")
+
+
+def env_allowed(flag: bool | None) -> bool:
+    """``allow_env`` as given; unset, the safe mode when ``CI`` is set: the one decision of
+    every reader of robots (``load``, ``check``, every command, ``crosscheck``).
+
+    A CI job on a pull request checks files a stranger wrote, and its environment holds
+    tokens and secrets: ``$(env)`` or an include of a file outside the checkout would print
+    them in the job's public log. GitHub Actions, GitLab CI and most other services set
+    ``CI=true``; on a developer's machine the files are their own.
+    """
+    return flag if flag is not None else not under_ci()
 
 
 def resolved(what: str, outcome) -> None:

@@ -17,7 +17,8 @@ from lxml import etree
 
 from urdftool.diagnostics import Location, Severity, display_path, line_at
 from urdftool.errors import LoadError
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, kind_of, read_regular
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, TooLarge, env_allowed, kind_of, \
+    read_regular
 from urdftool.description.inputs import SettingValue, checked_file_size, held
 from urdftool.description.robot import LoadNote, Robot
 from urdftool.description.packages import PackageResolver, containment_root, link_out
@@ -86,23 +87,29 @@ def _substitutes(text: str | None) -> bool:
 
 
 def load(path: str | os.PathLike, *, xacro_args: dict[str, str] | None = None,
-         packages: dict[str, Path] | None = None, allow_env: bool = True,
+         packages: dict[str, Path] | None = None, allow_env: bool | None = None,
          max_file_size: int = DEFAULT_MAX_FILE_SIZE, data: bytes | None = None,
          as_written: bool = False) -> Robot:
     """Load a robot from ``path`` (``-`` reads stdin); raises a located LoadError.
 
     as_written: read a file not named .xacro as plain URDF even when it holds xacro, as
     urdfdom (check_urdf) reads it; by default such a file is expanded, with a note.
+    allow_env: ``$(env)`` and files outside the repository allowed; None, as ``check`` and
+    every command: the safe mode when ``CI`` is set (:func:`~urdftool.description.files.
+    env_allowed`; this was True, and a script's ``load`` under CI read the job's secrets a
+    robot named).
 
     One load is one view of the file system (:func:`~urdftool.description.run_memo.one_run`,
     the check's when it loads within one): a library caller's load asks each repository root,
     real path and package of its includes once, as a check does."""
     if not isinstance(data, (bytes, type(None))):
         raise TypeError(f"data must be the file's bytes, not {type(data).__name__}")
-    xacro_args = held("xacro_args", xacro_args, "names", none=True)  # the one guard of a
-    packages = held("packages", packages, "paths", none=True)  # caller's options, as
-    held("allow_env", allow_env, "flag")  # check_paths' (packages="x" was an AttributeError
-    held("as_written", as_written, "flag")  # from inside, allow_env="no" true)
+    # the one guard of a caller's options, as check_paths' (packages="x" was an
+    # AttributeError from inside, allow_env="no" true)
+    xacro_args = held("xacro_args", xacro_args, "names", none=True)
+    packages = held("packages", packages, "paths", none=True)
+    allow_env = env_allowed(held("allow_env", allow_env, "flag", none=True))
+    held("as_written", as_written, "flag")
     checked_file_size(max_file_size, "max_file_size")
     with one_run():  # (a path in bytes as os reads them: os.fspath kept bytes, and each reader
         # failed on it in its own way)

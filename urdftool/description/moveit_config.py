@@ -65,7 +65,9 @@ def _number(value) -> bool:
 
 
 def _tagged_number(value) -> bool:
-    """A number written with a tag (``!degrees 360``) is read as its text: its unit is unknown."""
+    """A number written with a tag its reader does not construct (``!degrees 360`` in a ROS 2
+    parameter file; rosparam's tags are read as it reads them, :func:`~urdftool.description.
+    documents.rosparam_angle`) is read as its text: its unit is unknown."""
     try:
         float(value)
     except (TypeError, ValueError):

@@ -89,7 +89,7 @@ _MARKS = (("CACHEDIR.TAG", _TAG), (".gitignore", "# created by urdftool\n*\n"))
 def default_folder(environ=os.environ) -> Path | None:
     """``.urdftool_cache`` in the working directory; None under CI (see the module docstring)
     or with ``URDFTOOL_NO_CACHE`` set (as the test suite does)."""
-    from urdftool.lint.options import under_ci
+    from urdftool.description.files import under_ci
 
     return None if under_ci(environ) or environ.get("URDFTOOL_NO_CACHE") else Path(FOLDER)
 

@@ -40,7 +40,8 @@ from urdftool.records import Frozen
 from urdftool.simulators import SIMULATORS
 
 __all__ = ["Rule", "Severity", "FAMILIES", "rule", "declare", "Catalogue", "UnknownRule",
-           "Conditional", "ReadersTake", "Refused", "UrdfdomAlone", "weighed", "NOT_LOADED"]
+           "Conditional", "ReadersTake", "Refused", "UrdfdomAlone", "UrdfdomDrops", "weighed",
+           "NOT_LOADED"]
 
 FAMILIES = {
     "U0": "loading and the URDF vocabulary",
@@ -118,6 +119,17 @@ class UrdfdomAlone(ReadersTake):
 
     def __new__(cls, text: str, takers, repeated: tuple = ()):
         return super().__new__(cls, text, dict.fromkeys(takers, "urdfdom"), repeated)
+
+
+class UrdfdomDrops(ReadersTake, Taken):
+    """A :class:`ReadersTake` message when urdfdom takes the robot but drops what the shape
+    is about (and more) while other readers of URDF (``takers``) read it whole: a visual's
+    ``<material>`` without a name, at which urdfdom stops reading the link. Its finding is no
+    refusal (:class:`Taken`); on a file such a reader reads, a warning naming the condition,
+    "if urdfdom loads it ..."."""
+
+    def __new__(cls, text: str, takers, repeated: tuple = ()):
+        return ReadersTake.__new__(cls, text, dict.fromkeys(takers, "urdfdom"), repeated)
 
 
 class Refused(Conditional):

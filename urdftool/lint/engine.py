@@ -10,7 +10,8 @@ from pathlib import Path
 from urdftool import budget as budgets
 from urdftool.diagnostics import Finding, Location, display_path, distinct_sorted
 from urdftool.errors import LoadError, Said, described, missing_extra
-from urdftool.lint.catalogue import Conditional, ReadersTake, Refused, Rule, UrdfdomAlone, weighed
+from urdftool.lint.catalogue import Conditional, ReadersTake, Refused, Rule, Taken, UrdfdomAlone, \
+    weighed
 from urdftool.lint.options import CheckOptions, FileResult, Selection
 from urdftool.lint.parts import judged
 from urdftool.lint.rules import CATALOGUE
@@ -33,13 +34,14 @@ NOTE_CODES = {"xacro-in-urdf": "U007", "xacro-warning": "U010", "outside-file": 
               "late-declaration": "U001", "double-hyphen": "U001",
               "root-namespace": "U004"}
 # The errors for what urdfdom's parser (check_urdf, robot_state_publisher) refuses: the file does
-# not parse, is not a <robot> of a version it reads, or its tree, joint types, limits or joint
-# numbers are broken. urdftool's other errors are on files urdfdom accepts (it is stricter
-# there). tests/integration/test_parity.py holds this set to check_urdf's verdicts.
+# not parse, is not a <robot> of a version it reads, its tree, joint types, limits or joint
+# numbers are broken, or a top-level material's name is given twice (U405, its other findings
+# urdfdom takes). urdftool's other errors are on files urdfdom accepts (it is stricter there).
+# tests/integration/test_parity.py holds this set to check_urdf's verdicts.
 URDFDOM_REFUSES = frozenset({"U001", "U002", "U003", "U004", "U011", "U012",
                              "U101", "U102", "U103", "U104", "U105", "U106", "U108", "U109",
                              "U110", "U201", "U202", "U203", "U207", "U208", "U213",
-                             "U023"})
+                             "U023", "U405"})
 # ... and what the commands that pose a robot (fk, render...) refuse besides: a link with two
 # parent joints (U107), which urdfdom hangs under the joint whose name sorts last, Pinocchio
 # too or refuses the robot ("Model does not have any body named a"), by the joints' names, and
@@ -186,6 +188,8 @@ def as_read(robot, message: ReadersTake) -> str:
 
     reader = other_reader(robot)
     if reader is None or reader.kind not in message.takers:
+        if isinstance(message, Taken):  # (urdfdom takes the robot all the same: no refusal)
+            return Taken(str(message), message.repeated)
         return Said(str(message), message.repeated) if message.repeated else str(message)
     why = f" ({reader.why})"
     said = Refused if isinstance(message, UrdfdomAlone) else Conditional

@@ -14,18 +14,6 @@ from urdftool.diagnostics import Finding, Severity
 from urdftool.records import Frozen, NEW, Record
 
 
-def under_ci(environ=None) -> bool:
-    """Whether this run is a CI job's: ``CI`` set (GitHub Actions, GitLab CI and most services
-    set ``CI=true``) to anything but ``0``, ``false`` or ``no``. The one answer of the safe
-    mode's default (:func:`urdftool.lint.settings.env_allowed`) and of the cache's
-    (:func:`urdftool.lint.cache.default_folder`): ``CI=false`` turned the cache off but left
-    the full mode on, and ``CI=" "`` the same."""
-    import os
-
-    value = (os.environ if environ is None else environ).get("CI", "")
-    return value.strip().lower() not in ("", "0", "false", "no")
-
-
 class Selection(Frozen):
     """Which rules run: codes, code prefixes (``U2``) or names (``inverted-limits``).
 
@@ -167,6 +155,11 @@ class FileResult(Record):
         the robot's text where it was built (:attr:`~urdftool.description.robot.Robot.
         sources`, the one owner of what it read), kept with the result; None when not known
         (no argument given, a robot that did not load)
+    notes: what its check says beside its findings, in words, as ``urdftool check`` says it
+        on standard error: the settings files above it not read
+        (:attr:`~urdftool.lint.settings.FileSettings.skipped`, decided once, by the settings
+        that applied to it; the run's :attr:`~urdftool.lint.runner.Run.notes`, the language
+        server's pop-ups)
     """
 
     path: str
@@ -177,14 +170,15 @@ class FileResult(Record):
     record: object | None
     read: tuple
     arguments: list | None
+    notes: tuple
 
     __slots__ = ("path", "findings", "robot", "strict", "companions", "record", "read",
-                 "arguments")
+                 "arguments", "notes")
     _shown = ("path", "findings", "robot", "strict", "companions")
 
     def __init__(self, path: str, findings: list[Finding], robot: object | None = None,
                  strict: bool = False, companions: list[str] = NEW, record: object | None = None,
-                 read: tuple = (), arguments: list | None = None) -> None:
+                 read: tuple = (), arguments: list | None = None, notes: tuple = ()) -> None:
         self.path = path
         self.findings = findings
         self.robot = robot
@@ -193,6 +187,7 @@ class FileResult(Record):
         self.record = record
         self.read = read
         self.arguments = arguments
+        self.notes = notes
 
     @property
     def unexpanded(self) -> bool:

@@ -276,9 +276,10 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
                             finished=lambda done: progress(before + done, len(files)))
         before += len(indexes)
         for index, result in zip(indexes, found):
+            result.notes = plans[index].skipped
             results[index] = result
-    unread = dict.fromkeys(why for plan in plans for why in plan.skipped)  # (said once; a run
-    # with notes is never kept whole: said again on every run)
+    unread = dict.fromkeys(why for result in results for why in result.notes)  # (said once; a
+    # run with notes is never kept whole: said again on every run)
     run = Run(results, targets.skipped, [*targets.notes, *unread], [plan.strict for plan in plans],
               errors=errors, unbuilt=targets.unbuilt)
     if cache is not None and not errors:
@@ -300,7 +301,8 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
     options: as :func:`check_paths` (the settings file above ``path`` applies, per-file ignores
         too, unless ``use_settings=False``); the result keeps the loaded ``robot`` and the
         ``record`` of what the check read, searched and followed, the settings looked for
-        included (:mod:`urdftool.description.record`)
+        included (:mod:`urdftool.description.record`), and its ``notes`` (the settings files
+        not read), as a run's
     """
     path = _path(path)
     if not isinstance(data, (str, bytes, type(None))):
@@ -318,8 +320,9 @@ def check_file(path, *, data: bytes | str | None = None, **options) -> FileResul
 
     with recording() as record, unsaved(buffers):  # the settings found, and the check's own
         check_companions(request.companions)  # record
-        result = engine.load_and_check(path, for_file(path, request).options, data=data)
-    result.record = record
+        settings = for_file(path, request)
+        result = engine.load_and_check(path, settings.options, data=data)
+    result.record, result.notes = record, settings.skipped
     return result
 
 

@@ -47,8 +47,8 @@ from pathlib import Path
 from urdftool.budget import DEFAULT_MEMORY, DEFAULT_TIMEOUT, format_memory, parse_memory
 from urdftool.diagnostics import line_at
 from urdftool.errors import OptionError, SettingsError, UnknownRule, UsageError
-from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, identity_or_why, inside, \
-    kind_of, read_regular, unreachable
+from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, env_allowed, identity_or_why, \
+    inside, kind_of, read_regular, unreachable
 from urdftool.description.inputs import MAX_TRIANGLES, CompanionPaths, MeshLimits, SettingValue, \
     checked_file_size, held, shown
 from urdftool.description.record import remembered
@@ -745,7 +745,8 @@ class CheckRequest(Frozen):
         settings' ``select`` when given
     ignore: added to the settings' ``ignore``
     strict: warnings fail the run too (as do the settings' ``strict``)
-    allow_env: ``$(env)`` and files outside the repository allowed; None: as :func:`env_allowed`
+    allow_env: ``$(env)`` and files outside the repository allowed; None: as
+        :func:`~urdftool.description.files.env_allowed`
     max_file_size: [bytes] None: the settings', else 16 MiB
     max_memory: per worker, as ``parse_memory`` reads it ("2G", "0" for none) or in bytes;
         None: the settings', else 2 GiB
@@ -930,21 +931,6 @@ def _given(requested, setting, default):
     """The request's value when given (the command line wins), else the settings', else the
     built-in one."""
     return requested if requested is not None else setting if setting is not None else default
-
-
-def env_allowed(flag: bool | None) -> bool:
-    """``allow_env`` as given; unset, the safe mode when ``CI`` is set.
-
-    A CI job on a pull request checks files a stranger wrote, and its environment holds
-    tokens and secrets: ``$(env)`` or an include of a file outside the checkout would print
-    them in the job's public log. GitHub Actions, GitLab CI and most other services set
-    ``CI=true``; on a developer's machine the files are their own.
-    """
-    if flag is not None:
-        return flag
-    from urdftool.lint.options import under_ci
-
-    return not under_ci()
 
 
 def _codes(values: Iterable[str]) -> list[str]:

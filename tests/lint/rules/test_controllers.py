@@ -132,6 +132,43 @@ def test_a_value_pyyaml_cannot_construct_is_u601_an_error_where_every_reader_fai
         ("U601", line, severity)]
 
 
+def test_a_rosparam_angle_that_is_no_number_is_u601_at_its_line(tmp_path):
+    """``!degrees abc`` in a ROS 1 controllers file: rosparam's constructor raises and roslaunch
+    refuses the file (no controller gets its parameters); it was read as the text 'abc', and
+    nothing said. One it reads is a number in radians (``!radians pi/2``), no finding."""
+    robot = HEAD_ROBOT.format(body="")
+    layout = "humanoid:\n  c:\n    type: a/B\n    joints: [head_joint]\n    angle: VALUE\n"
+    for value, expected in (("!degrees abc", [("U601", 5, Severity.ERROR)]), ("!radians pi/2", [])):
+        _, findings = check_folder(tmp_path / value[1:4], {"robot.urdf": robot,
+                                                           "config/c.yaml": layout.replace("VALUE", value)})
+        assert [(f.code, f.line, f.severity) for f in findings if f.code in ("U601", "U900")] == \
+            expected, value
+
+
+@pytest.mark.parametrize("layout, expected", [
+    ("humanoid:\n  c:\n    type: a/B\n    joints: [head_joint]\n    VALUE\n", Severity.ERROR),
+    ("moveit_simple_controller_manager:\n  controller_names: [c]\n  c:\n    action_ns: x\n"
+     "    VALUE\n", Severity.WARNING),
+    ("controller_manager:\n  ros__parameters:\n    c: {type: a/B}\nc:\n  ros__parameters:\n"
+     "    joints: [head_joint]\n    VALUE\n", None),
+])
+@pytest.mark.parametrize("value", ["count: 2147483648", "counts: [1, -2147483649]"])
+def test_an_integer_past_int32_in_a_ros1_parameter_file_is_u601_at_its_line(tmp_path, layout,
+                                                                             expected, value):
+    """The ROS 1 parameter server speaks XML-RPC, whose integers are 32-bit (<i4>): roslaunch's
+    client refuses to send 2147483648 ("int exceeds XML-RPC limits") and stops before any node
+    starts. An error in a file of ROS 1 controllers; a warning saying the condition in a file
+    only of MoveIt's lists (ROS 2's MoveIt reads it too, into 64-bit parameters); nothing in a
+    ROS 2 parameter file (ROS 2's own bound, int64, is U630's). Nothing said it before."""
+    robot = HEAD_ROBOT.format(body="")
+    _, findings = check_folder(tmp_path, {"robot.urdf": robot,
+                                          "config/c.yaml": layout.replace("VALUE", value)})
+    found = [(f.line, f.severity) for f in findings if f.code == "U601" and "32-bit" in f.message]
+    assert found == ([] if expected is None else [(layout.count("\n"), expected)])
+    if expected is not None:
+        assert "int exceeds XML-RPC limits" in next(f.message for f in findings if "32-bit" in f.message)
+
+
 # --- the example robots, broken in a temporary copy ------------------------------------------
 
 @pytest.mark.parametrize("file, old, new, code, message", [

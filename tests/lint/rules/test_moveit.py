@@ -41,12 +41,14 @@ def test_moveit2_layouts_under_ros_parameters(tmp_path):
                  "moveit_simple_controller_manager:\n  controller_names: [head_controller, neck]\n"
                  "  head_controller:\n    type: FollowJointTrajectory\n    joints: [head_joint, cam_joint]\n"}
     found, findings = check_folder(tmp_path, files, select=("U81", "U601"))
-    # the timeout, min_position (a tagged max_position has no known unit: not compared), the
-    # neck controller without a block (the controllers family's U601: the file is among the
-    # robot's controller files), and cam_joint that ros_control does not drive
-    assert found == [("joint_limits.yaml", 6, "U816"), ("kinematics.yaml", 6, "U812"),
-                     ("moveit_controllers.yaml", 2, "U601"), ("moveit_controllers.yaml", 5, "U818")]
-    assert "adds cam_joint" in findings[3].message
+    # the timeout, max_position (!degrees 360: 2 pi to rosparam and to ROS 2's MoveIt, whose
+    # launch_param_builder reads the tag alike) and min_position, the neck controller without
+    # a block (the controllers family's U601: the file is among the robot's controller files),
+    # and cam_joint that ros_control does not drive
+    assert found == [("joint_limits.yaml", 5, "U816"), ("joint_limits.yaml", 6, "U816"),
+                     ("kinematics.yaml", 6, "U812"), ("moveit_controllers.yaml", 2, "U601"),
+                     ("moveit_controllers.yaml", 5, "U818")]
+    assert "6.28319 is above" in findings[0].message and "adds cam_joint" in findings[4].message
 
 
 def test_a_gripper_command_controller_may_list_the_mimicking_finger(tmp_path):

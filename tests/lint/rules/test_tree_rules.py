@@ -193,3 +193,18 @@ def test_a_loop_beside_the_tree_is_taken_and_one_below_or_through_the_root_is_no
     through = _robot(tmp_path, '<link name="r"/><link name="a"/>'
                      + _fixed("j0", "r", "a") + _fixed("j1", "a", "r"))
     assert [taken for _, taken in _taken(tree.kinematic_cycle, through)] == [False]
+
+
+def test_a_link_with_two_parents_says_what_becomes_of_it(tmp_path):
+    """U107 said only "link 'c' has 2 parent joints", where its siblings (U108, U109) say what
+    follows: urdfdom takes the robot, keeping as the link's parent the joint whose name sorts
+    last (its joints are a map by name), and the commands that pose a robot refuse it
+    (engine.POSING_REFUSES: no one pose of the link)."""
+    path = tmp_path / "r.urdf"
+    path.write_text('<robot name="r"><link name="r"/><link name="a"/><link name="b"/>' + "".join(
+        f'<joint name="{j}" type="fixed"><parent link="{p}"/><child link="{c}"/></joint>'
+        for j, p, c in (("j0", "r", "a"), ("z1", "r", "b"), ("a2", "a", "b"))) + "</robot>")
+    [(_, message)] = tree.multiple_parents(load(str(path)))
+    assert message.startswith("link 'b' has 2 parent joints ('z1', 'a2')")
+    assert "urdfdom keeps 'z1' as its parent joint (the name that sorts last)" in message
+    assert "the commands that pose a robot (fk, render...) refuse it" in message

@@ -27,7 +27,8 @@ from urdftool.description.packages import containment_root, exported_classes
 from urdftool.description.controllers import (Controller, JointRef, controller_files, controllers,
                                               runs_of)
 from urdftool.description.runtime import STATE_PUBLISHERS, Runs, runtime, together
-from urdftool.errors import available
+from urdftool.description.documents import YamlList, YamlMap
+from urdftool.errors import available, shown_word
 from urdftool.lint.catalogue import Conditional, Severity, rule
 
 
@@ -119,7 +120,13 @@ def malformed_controllers_yaml(robot):
     2 parameter file it is a warning: ROS 2's parser reads it as written (no dates, no tag but
     ``!!str``), while a launch file or tool loading the file with PyYAML fails. An alias
     (``*defaults``, ``<<: *defaults``) in a ROS 2 parameter file is a warning too: ROS 2's parser
-    refuses every alias, PyYAML reads it.
+    refuses every alias, PyYAML reads it. rosparam's ``!degrees`` and ``!radians`` are read as
+    it reads them (``!radians 2*pi``); one it makes no number of (``!degrees abc``,
+    ``!radians 1/0``) is an error at its line: roslaunch refuses the file, and ROS 2's MoveIt,
+    which reads the tags as ``float(text)``, fails too. An integer past 32 bits in a ROS 1
+    parameter file (``encoder_ticks: 4294967296``) is an error too: the ROS 1 parameter server
+    speaks XML-RPC (``<i4>``), and roslaunch cannot send it ("int exceeds XML-RPC limits");
+    a warning in a file of MoveIt's lists alone, which ROS 2's MoveIt reads as well.
 
     Bad: ``joints: [head_pan, head_tilt`` (unclosed list)
     Good: ``joints: [head_pan, head_tilt]``
@@ -140,6 +147,50 @@ def malformed_controllers_yaml(robot):
         if explicit and not read.controllers and not _has_manager(read):
             yield file.at(1), (f"{file.display} names no controller (a mapping with "
                                "'type: package/Class', e.g. joint_state_broadcaster/JointStateBroadcaster)")
+        yield from _past_int32(robot, read)
+
+
+def _past_int32(robot, read):
+    """The first integer past int32 in a ROS 1 parameter file: the ROS 1 parameter server
+    speaks XML-RPC, whose integers are ``<i4>``; roslaunch's client (Python's xmlrpc.client)
+    refuses to send one past them and stops before any node starts. Certain in a file of ROS 1
+    controllers, or of a robot only ROS 1 reads; for one of MoveIt's lists alone, a warning
+    (ROS 2's MoveIt reads it too, into int64 parameters); never in a ROS 2 parameter file."""
+    from urdftool.description.ros_version import ros_version
+    from urdftool.numbers import INT32, in_int32
+
+    if read.file.ros2:
+        return
+    version = 1 if any(c.layout == "ros1" for c in read.controllers) else ros_version(robot)[0]
+    if version == 2:
+        return
+    for name, past, line in _integers(read.file.data, "", read.file.line, set()):
+        if in_int32(past):
+            continue
+        said = (f"{name}: {shown_word(str(past))} is past the 32-bit integers of the ROS 1 "
+                f"parameter server (XML-RPC's <i4>, {INT32[0]} to {INT32[1]}): roslaunch cannot "
+                "send it (\"int exceeds XML-RPC limits\") and stops before any node starts; "
+                "write it as a double or a string")
+        yield read.file.at(line), said if version == 1 else Conditional(
+            f"if ROS 1 loads {read.file.display}: {said}")
+        return
+
+
+def _integers(value, name: str, line, seen: set, depth: int = 0):
+    """(dotted name, integer, line) of each integer in a YAML value, in mappings and lists
+    alike (XML-RPC sends them all), each collection once (an alias shares one)."""
+    if isinstance(value, int) and not isinstance(value, bool):
+        yield name, value, line
+    if not isinstance(value, (YamlMap, YamlList)) or id(value) in seen or depth > 64:
+        return
+    seen.add(id(value))
+    if isinstance(value, YamlMap):
+        for key, item in value.items():
+            yield from _integers(item, f"{name}.{key}" if name else str(key),
+                                 value.lines.get(key, line), seen, depth + 1)
+    else:
+        for index, item in enumerate(value):
+            yield from _integers(item, f"{name}[{index}]", value.lines[index], seen, depth + 1)
 
 
 def _has_manager(read) -> bool:

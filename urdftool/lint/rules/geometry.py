@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import math
 
-from urdftool.lint.catalogue import (NOT_LOADED, Conditional, Severity, UrdfdomAlone, rule,
-                                     weighed)
+from urdftool.lint.catalogue import (NOT_LOADED, Conditional, Severity, Taken, UrdfdomDrops,
+                                     rule, weighed)
 from urdftool.numbers import number
 from urdftool.description.urdf import SHAPE_ATTRIBUTES, SHAPES, version_problem
 from urdftool.description.xml import child_list, children_named, first_child
@@ -272,8 +272,13 @@ def _defines(material) -> bool:
 def malformed_material(robot):
     """A material is malformed: no name, no colour, a bad colour, or a name defined twice.
 
-    A top-level material needs a colour or texture; ``rgba`` is four numbers in [0, 1]. urdfdom
-    refuses each of these (components must be four numbers in [0, 1]).
+    A top-level material needs a name and a colour or texture; ``rgba`` is four numbers in
+    [0, 1]. urdfdom refuses a robot whose top-level materials give one name twice ("material
+    'red' is not unique"; two without a name are both '' to it): robot_state_publisher does not
+    load it. The rest it logs and takes: a material without a name no visual can name, one
+    without a colour colours nothing, a bad ``rgba`` is dropped. A visual's material without
+    a name is worse: urdfdom stops reading the link there, and the link has none of its
+    visuals from that one on, nor any collision.
 
     A **warning** naming the condition for a visual's material without a name in a file Drake
     or a web page reads, as its files say and nothing says ROS runs it (``xmlns:drake``; a web
@@ -285,29 +290,35 @@ def malformed_material(robot):
     seen: set[str] = set()
     for material in robot.children("material"):
         name = material.get("name")
-        if name is None:
-            yield material, "top-level <material> has no name attribute"
-        elif name in seen:
-            yield material, f"material '{name}' is defined twice at the top level"
-        else:
-            seen.add(name)
+        if (name or "") in seen:  # (urdfdom names a material without the attribute '')
+            yield material, ((f"material '{name}' is defined twice" if name is not None else
+                              "a second top-level <material> named '' to urdfdom (it has no "
+                              "name attribute)") + f" at the top level, so urdfdom refuses the "
+                             f"robot (\"material '{name or ''}' is not unique\"): {NOT_LOADED}; "
+                             "give each its own name")
+        elif name is None:
+            yield material, Taken("top-level <material> has no name attribute: no visual can "
+                                  "name it")
+        seen.add(name or "")
         if not _defines(material):
-            yield material, (f"top-level material '{name}' has neither <color rgba=...> nor "
-                             "<texture filename=...>")
+            yield material, Taken(f"top-level material '{name}' has neither <color rgba=...> "
+                                  "nor <texture filename=...>")
     materials = robot.children("material") + [
         m for _, holder in _holders(robot, ("visual",))
         for m in robot.grouped(holder).get("material", ())]
     for material in materials:
         parent = material.getparent()
         if parent.tag == "visual" and material.get("name") is None:
-            yield material, UrdfdomAlone(f"link '{_link_name(parent)}': visual <material> has "
-                                         f"no name attribute, so urdfdom refuses the robot: "
-                                         f"{NOT_LOADED}; name it (<material name=\"...\">)",
-                                         {"drake", "browser"})
+            link = _link_name(parent)
+            yield material, UrdfdomDrops(
+                f"link '{link}': visual <material> has no name attribute, so urdfdom stops "
+                f"reading the link there: '{link}' has none of its visuals from this one on, "
+                "nor any collision (RViz draws none of them; MoveIt and Gazebo collide with "
+                "nothing of it); name it (<material name=\"...\">)", {"drake", "browser"})
         for color in children_named(material, "color"):
             problem = _rgba_problem(color)
             if problem:
-                yield color, f"material '{material.get('name')}': {problem}"
+                yield color, Taken(f"material '{material.get('name')}': {problem}")
 
 
 @rule("U406", "undefined-material", Severity.WARNING)

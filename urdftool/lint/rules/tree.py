@@ -210,9 +210,12 @@ def _parent_map(robot) -> dict[str, list]:
 def multiple_parents(robot):
     """A link is the child of more than one joint.
 
-    URDF describes a tree: each link has at most one parent joint. Closed chains need a
-    different format (SDF) or a mimic joint. A warning when the link's name clashes only
-    because xacro arguments keep their empty defaults (as U101).
+    URDF describes a tree: each link has at most one parent joint. urdfdom takes the robot and
+    keeps one of them, the joint whose name sorts last (it reads joints by name), as the link's
+    parent: the others' pose of it is lost, by the joints' names alone. The commands that pose
+    a robot refuse it (Pinocchio hangs the link under that joint or refuses the robot). Closed
+    chains need a different format (SDF) or a mimic joint. A warning when the link's name
+    clashes only because xacro arguments keep their empty defaults (as U101).
 
     Bad: joints ``a_to_c`` and ``b_to_c`` both with ``<child link="c"/>``
     Good: one of them attaches a new link instead.
@@ -220,9 +223,13 @@ def multiple_parents(robot):
     for child, joints in parent_map(robot).items():
         if len(joints) > 1:
             names = ", ".join(f"'{j.get('name')}'" for j in joints)
+            kept = max(j.get("name") or "" for j in joints)  # (urdfdom's map of joints by name)
             for joint in joints[1:]:
                 yield robot.ends()[joint]["child"][0], _unless_given(
-                    robot, "link", child, f"link '{child}' has {len(joints)} parent joints ({names})")
+                    robot, "link", child, f"link '{child}' has {len(joints)} parent joints "
+                    f"({names}): urdfdom keeps '{kept}' as its parent joint (the name that sorts "
+                    "last) and loses the others' pose of it, and the commands that pose a robot "
+                    "(fk, render...) refuse it; give each joint a child link of its own")
 
 
 def roots(robot) -> list[str]:
