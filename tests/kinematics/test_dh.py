@@ -287,7 +287,7 @@ def test_a_table_value_pyyaml_cannot_construct_is_a_located_error(humanoid, tmp_
 
 @pytest.mark.parametrize("value, said", [
     ("{a: 1}", "a mapping"), ("[l_hip_link]", "a list"), ("5", "the number 5"),
-    ("true", "a boolean"), ("2001-01-01", "a date value")])
+    ("true", "a boolean"), ("2001-01-01", "a value of type date")])
 def test_a_table_naming_its_base_or_tip_with_no_text_is_a_located_error(run_cli, tmp_path,
                                                                         value, said):
     """attack30: ``tip_link: [1]`` was looked up among the robot's links by ``fk --dh

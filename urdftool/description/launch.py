@@ -98,7 +98,7 @@ def concat(values, text: str | None = None) -> Value:
     """The values one after the other (adjacent literals joined); an item that is no Value is
     unknown: a launch file may pass anything where launch takes a substitution (``None``, a
     dict, a condition in ``Command([...])``: every rule asking of the launch files crashed on
-    it, U900)."""
+    it)."""
     values = [value if isinstance(value, Value) else unknown("?") for value in values]
     parts: list = []
     for value in values:

@@ -471,7 +471,7 @@ def _kind(value) -> str:
     """What a YAML value that is no text is, in words."""
     return ("a mapping" if isinstance(value, dict) else "a list" if isinstance(value, list)
             else "a boolean" if isinstance(value, bool) else f"the number {value}"
-            if isinstance(value, (int, float)) else f"a {type(value).__name__} value")
+            if isinstance(value, (int, float)) else f"a value of type {type(value).__name__}")
 
 
 def _matrix(value, key: str, path: str) -> np.ndarray:
