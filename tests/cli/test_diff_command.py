@@ -51,7 +51,7 @@ def test_json_and_markdown(run_cli, pair, tmp_path):
     assert run_cli("diff", *pair, "--format", "markdown", "-o", summary).exit_code == 1
     text = summary.read_text()
     assert text.startswith("### Robot description:")
-    assert "- joint `elbow`: origin.xyz" in text and "| `hand` | 3 | 0 | 3 | 0 | `shoulder`=0, `elbow`=0 |" in text  # names as code spans
+    assert "- joint `elbow`: `origin.xyz`" in text and "| `hand` | 3 | 0 | 3 | 0 | `shoulder`=0, `elbow`=0 |" in text  # names as code spans
 
 
 def test_render_overlays_old_and_new(run_cli, pair, tmp_path):

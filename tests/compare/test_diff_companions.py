@@ -85,6 +85,30 @@ def test_a_nan_in_the_controller_yaml_compared_with_itself_is_no_change(tmp_path
     assert changes(result) == set()
 
 
+def test_a_controller_value_yaml_builds_beyond_json_is_written_exact_in_every_format(tmp_path):
+    """attack30: a set, a date, bytes and an ordered map's pairs in controller YAML were a
+    TypeError traceback of ``diff -f json`` (no JSON value) and their repr, unquoted, in the
+    text and Markdown reports; a key is the file's words: one line, a code span in Markdown."""
+    import json
+
+    from urdftool.report import diff as report
+
+    values = ("set_of: !!set {b, a}\n    day: 2001-02-03\n    blob: !!binary aGk=\n"
+              "    pairs: !!omap [{x: 1}, {y: 2}]\n    \"k\\n![I](https://e/x)\": 1\n")
+    new = CONTROLLERS.replace("    constraints:", "    " + values + "    constraints:")
+    result = diff(side(tmp_path / "old"), side(tmp_path / "new", controllers=new))
+    data = json.loads(json.dumps(report.as_json(result)))
+    assert {c["field"].rpartition(".")[2]: c["new"] for c in data["changes"]} == {
+        "set_of": ["a", "b"], "day": "2001-02-03", "blob": "hi", "pairs": [["x", 1], ["y", 2]],
+        "k\n![I](https://e/x)": 1}
+    text, markdown = report.text(result), report.markdown(result)
+    assert "arm.arm_controller.k\\n![I](https://e/x) (none) -> 1\n" in text
+    assert "arm.arm_controller.day (none) -> '2001-02-03'" in text
+    assert "- controllers `config/controllers.yaml`: `arm.arm_controller.k\\n![I](https://e/x)` " \
+        "(none) -> 1\n" in markdown
+    assert "`arm.arm_controller.set_of` (none) -> (`a`, `b`)" in markdown
+
+
 def _unreadable(path, kind, outside):
     """Replace the file at ``path`` by something no side can compare: ``kind`` names it."""
     import os

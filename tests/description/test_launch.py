@@ -891,3 +891,30 @@ def generate_launch_description():
     assert len(found) == 3 and len(set(found.values())) == 1, found
     certain, truth, free, words = found["a.launch.py"]
     assert not certain and truth is None and free == ("real", "sim") and words == 2
+
+
+@pytest.mark.parametrize("item", ["None", "{'a': [1]}", "IfCondition(None)", "{**extra}"])
+@pytest.mark.parametrize("where", ["Command(['xacro ', {item}, path])",
+                                   "PythonExpression(['1 + ', {item}])",
+                                   "Command(['xacro ', path], condition=IfCondition([{item}]))",
+                                   "DeclareLaunchArgument('x', default_value=[{item}])"])
+def test_what_is_no_text_where_launch_takes_a_substitution_is_unknown(tmp_path, item, where):
+    """attack30: ``Command(['xacro ', None, path])`` (or a dict, a condition, a number) was
+    joined as text by ``launch.concat``: AttributeError, U900 for every rule of the robot the
+    launch file names, and a traceback of ``check robot.urdf``, which reads the launch files
+    before any robot. concat takes anything: what is no text is unknown."""
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch.py": f'''
+from launch.actions import DeclareLaunchArgument
+from launch.conditions import IfCondition
+from launch.substitutions import Command, PythonExpression
+from launch_ros.actions import Node
+
+def generate_launch_description():
+    extra = dict(a=1)
+    path = "urdf/arm.urdf.xacro"
+    return LaunchDescription([Node(package="robot_state_publisher",
+                                   executable="robot_state_publisher",
+                                   parameters=[{{"robot_description": {where.format(item=item)}}}])])
+'''})
+    read = read_launch(root / "p/launch/a.launch.py", root)
+    assert read.problem is None and read.actions

@@ -185,11 +185,16 @@ def _yaml(text: str) -> str:
     return '"' + "".join(out) + '"'
 
 
-def controllers_yaml(n: Names) -> str:
+def controllers_yaml(n: Names, old: bool = False) -> str:
     """ROS 2 controllers: one named hostile, its joints an existing hostile joint and a missing
-    one whose name holds terminal escape sequences."""
+    one whose name holds terminal escape sequences; ``old`` (diff's old side): a parameter
+    named hostile and another whose value is a set of a hostile word, which the new side
+    changes (the key and the value are written by the diff)."""
     name = _yaml(n.controller)
     missing = _yaml(hostile("NOJOINT", {**NAME_PAYLOADS, **TERMINAL_PAYLOADS, **YAML_PAYLOADS}))
+    changed = (f"""    {_yaml(hostile("KEY", {**NAME_PAYLOADS, **TERMINAL_PAYLOADS}))}: 1
+    set_of: !!set {{{_yaml(hostile("SET", {**NAME_PAYLOADS, **TERMINAL_PAYLOADS}))}}}
+""" if old else "")
     return f"""controller_manager:
   ros__parameters:
     update_rate: 50
@@ -202,7 +207,7 @@ def controllers_yaml(n: Names) -> str:
     joints:
       - {_yaml(n.joint1)}
       - {missing}
-"""
+{changed}"""
 
 
 def configurations_csv(n: Names) -> str:
@@ -276,6 +281,12 @@ def repository(root: Path, payloads=None) -> Repository:
     old = root / "old"
     old.mkdir(exist_ok=True)
     (old / "robot.urdf").write_text(robot_urdf(n, inverted=False, renamed=True))
+    (old / "config").mkdir(exist_ok=True)
+    (old / "config" / "controllers.yaml").write_text(controllers_yaml(n, old=True))
+    changed = root / "changed"  # diff's new side of old's controllers: its keys changed
+    (changed / "config").mkdir(parents=True, exist_ok=True)
+    (changed / "robot.urdf").write_text(robot_urdf(n))
+    (changed / "config" / "controllers.yaml").write_text(controllers_yaml(n))
     broken = root / "broken.urdf"
     broken.write_text(robot_urdf(n, broken=True))
     meshed = root / "meshed.urdf"
@@ -506,6 +517,8 @@ def invocations(repo: Repository) -> list[Invocation]:
           str(out / "diff.svg"), "--output", str(out / "diff.md")], "text",
          [out / "diff.md", out / "diff.svg"]),
         (["diff", str(repo.old), plain, "--chain", f"{unknown}:x"], "text", []),
+        *((["diff", str(repo.old), str(repo.root / "changed" / "robot.urdf"), "--format", fmt],
+           fmt, []) for fmt in ("text", "json", "markdown")),
         (["diff", str(repo.broken), plain, "--format", "markdown"], "markdown", []),
         (["diff", str(repo.old), robot, "--format", "markdown", "--no-collisions"], "markdown",
          []),

@@ -285,6 +285,25 @@ def test_a_table_value_pyyaml_cannot_construct_is_a_located_error(humanoid, tmp_
     assert caught.value.where == f"{path}:{text[:text.index(new)].count(chr(10)) + 1}"
 
 
+@pytest.mark.parametrize("value, said", [
+    ("{a: 1}", "a mapping"), ("[l_hip_link]", "a list"), ("5", "the number 5"),
+    ("true", "a boolean"), ("2001-01-01", "a value of type date")])
+def test_a_table_naming_its_base_or_tip_with_no_text_is_a_located_error(run_cli, tmp_path,
+                                                                        value, said):
+    """attack30: ``tip_link: [1]`` was looked up among the robot's links by ``fk --dh
+    --verify``: a TypeError traceback (the name's close matches searched in a list)."""
+    table = dh.extract(load(HUMANOID), "body_link", "l_foot_link").as_dict()
+    for key in ("base_link", "tip_link"):
+        path = tmp_path / f"{key}.yaml"
+        path.write_text(yaml.safe_dump(table, sort_keys=False)
+                        .replace(f"{key}: {table[key]}", f"{key}: {value}"))
+        with pytest.raises(dh.DHError, match=f"'{key}' must be a link's name, not {said}$"):
+            dh.load_table(str(path))
+        result = run_cli("fk", HUMANOID, "--dh", path, "--verify")
+        assert result.exit_code == 2 and "Traceback" not in result.stderr, result.stderr
+        assert f"{key}' must be a link's name" in result.stderr
+
+
 def test_cli_dh_json_then_fk_verify(run_cli, tmp_path):
     result = run_cli("dh", HUMANOID, "--base", "body_link", "--tip", "l_foot_link", "-f", "json")
     assert result.exit_code == 0, result.output

@@ -64,10 +64,26 @@ def _flat(data, rename, prefix: str = "", out=None, depth: int = 0) -> dict:
         for index, value in enumerate(data):
             _flat(value, rename, f"{prefix}[{index}]", out, depth + 1)
     elif isinstance(data, list):
-        out[prefix] = tuple(rename(item) if isinstance(item, str) else item for item in data)
+        out[prefix] = tuple(rename(item) if isinstance(item, str) else _plain(item)
+                            for item in data)
     else:
-        out[prefix] = rename(data) if isinstance(data, str) else data
+        out[prefix] = rename(data) if isinstance(data, str) else _plain(data)
     return out
+
+
+def _plain(value):
+    """A YAML value as the diff compares and writes it, exact: JSON's scalars as they are, a
+    set as its items in order, an ordered map's pairs as pairs, bytes as text, a date or a
+    timestamp as its text (a set or a date was a traceback of ``diff -f json``: no JSON
+    value; and the text report wrote its repr, unquoted)."""
+    if value is None or isinstance(value, (str, int, float)):
+        return value
+    if isinstance(value, (set, frozenset, tuple, list)):
+        items = tuple(_plain(item) for item in value)
+        return items if isinstance(value, (tuple, list)) else tuple(sorted(items, key=repr))
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "backslashreplace")
+    return str(value)
 
 
 def _by_place(files, base) -> dict:

@@ -95,7 +95,11 @@ def unknown(text: str) -> Value:
 
 
 def concat(values, text: str | None = None) -> Value:
-    """The values one after the other (adjacent literals joined)."""
+    """The values one after the other (adjacent literals joined); an item that is no Value is
+    unknown: a launch file may pass anything where launch takes a substitution (``None``, a
+    dict, a condition in ``Command([...])``: every rule asking of the launch files crashed on
+    it)."""
+    values = [value if isinstance(value, Value) else unknown("?") for value in values]
     parts: list = []
     for value in values:
         for part in value.parts:

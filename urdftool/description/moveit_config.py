@@ -295,11 +295,16 @@ def _moveit2(file, holder) -> tuple[list[ControllerEntry], list]:
     manager = holder["moveit_simple_controller_manager"]
     where = holder.lines["moveit_simple_controller_manager"]
     names = manager.get("controller_names") if isinstance(manager, YamlMap) else None
-    if not isinstance(names, YamlList):
-        return [], [(getattr(manager, "lines", {}).get("controller_names", where),
-                     "moveit_simple_controller_manager needs a 'controller_names:' list")]
+    if not isinstance(names, YamlList):  # (a list's lines are a list: its .get was U900)
+        return [], [(manager.lines.get("controller_names", where) if isinstance(manager, YamlMap)
+                     else where, "moveit_simple_controller_manager needs a 'controller_names:' "
+                     "list")]
     entries, problems = [], []
     for name, line in zip(names, names.lines):
+        if isinstance(name, bool) or not isinstance(name, (str, int)):  # (a list or a map
+            problems.append((line, "each entry of controller_names must be a controller's "
+                             "name"))  # was looked up as a key, unhashable)
+            continue
         block = manager.get(name)
         if not isinstance(block, YamlMap):
             problems.append((line, f"controller '{name}' is listed in controller_names but has "

@@ -461,7 +461,17 @@ def load_table(path: str) -> DHTable:
         for key, value in zip(("theta", "d", "a", "alpha"), values):
             _within([value], key, "m" if key in ("d", "a") else "rad", where)
         joints.append(DHJoint(row["joint"], kind, *values))
+    for key in ("base_link", "tip_link"):  # (a list or a number was a traceback of --verify:
+        if not isinstance(data.get(key), (str, type(None))):  # looked up among the links)
+            raise DHError(f"'{key}' must be a link's name, not {_kind(data[key])}", where=path)
     return DHTable(convention, base, tool, joints, data.get("base_link"), data.get("tip_link"))
+
+
+def _kind(value) -> str:
+    """What a YAML value that is no text is, in words."""
+    return ("a mapping" if isinstance(value, dict) else "a list" if isinstance(value, list)
+            else "a boolean" if isinstance(value, bool) else f"the number {value}"
+            if isinstance(value, (int, float)) else f"a value of type {type(value).__name__}")
 
 
 def _matrix(value, key: str, path: str) -> np.ndarray:

@@ -22,9 +22,10 @@ def _value(value, quote) -> str:
     if isinstance(value, tuple):
         if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
             return "(" + numbers(value, 6, ", ") + ")"
-        return "(" + ", ".join(number(v, 6) if isinstance(v, float) else
-                               quote(v) if isinstance(v, str) else str(v) for v in value) + ")"
-    return quote(value) if isinstance(value, str) else str(value)
+        return "(" + ", ".join(number(v, 6) if isinstance(v, float) else _value(v, quote)
+                               for v in value) + ")"
+    return str(value) if isinstance(value, int) else quote(str(value))  # (and a bool: its
+    # name; anything else holds the file's words: a YAML date, set or pair as its text)
 
 
 def _amount(change) -> str:
@@ -50,14 +51,15 @@ def _quoted(name) -> str:
     return f"'{_text(name)}'"
 
 
-def change_line(change, quote=_quoted) -> str:
+def change_line(change, quote=_quoted, field=_text) -> str:
     """One change as a sentence; ``quote`` marks names and the other text of the robot's
-    (quotes around terminal text in text, a code span in Markdown)."""
+    (quotes around terminal text in text, a code span in Markdown), ``field`` writes what
+    changed (a controller file's key is the file's words: terminal text, a code span)."""
     if change.kind == "renamed":
         return f"renamed {change.element} {quote(change.old_name)} -> {quote(change.name)}"
     if change.kind in ("added", "removed"):
         return f"{change.kind} {change.element} {quote(change.name)}"
-    line = (f"{change.element} {quote(change.name)}: {change.field} "
+    line = (f"{change.element} {quote(change.name)}: {field(change.field)} "
             f"{_value(change.old, quote)} -> {_value(change.new, quote)}"
             + (f" {change.unit}" if change.unit and change.delta is not None
                and change.field != "axis" else ""))  # (an axis: a direction, turned by delta)
@@ -169,7 +171,7 @@ def markdown(result) -> str:
         return f"{title}\n\nNo change: the two describe the same robot.\n"
     out = [title, "", f"**{len(changes)} change(s)**" if changes else
            "**No change in what was compared**", ""]
-    out += [f"- {change_line(change, _code)}" for change in changes]
+    out += [f"- {change_line(change, _code, _code)}" for change in changes]
     out += [f"- {not_compared_line(item, _code, _code)}" for item in result.not_compared]
     effects = result.effects
     if effects is not None:

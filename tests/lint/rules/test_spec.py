@@ -28,6 +28,15 @@ def test_spec_format_and_limits(tmp_path, spec, expected):
     assert check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})[0] == expected
 
 
+@pytest.mark.parametrize("unit", ["{deg: 1}", "[deg]", "!!set {deg}"])
+def test_a_unit_that_is_no_word_is_the_specs_one_finding(tmp_path, unit):
+    """attack30: a unit that YAML reads as a mapping, a list or a set was looked up among the
+    units: unhashable, every rule reading the spec crashed (U900). U701 at its line."""
+    spec = f"unit: {unit}\njoints:\n  head_joint: {{lower: -60, upper: 60}}\n"
+    assert check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})[0] == [
+        ("joint_limits.yaml", 1, "U701")]
+
+
 def test_limit_outside_spec_says_by_how_much_in_the_spec_unit(tmp_path):
     spec = "unit: deg\ntolerance: 1\njoints:\n  head_joint: {lower: -50, upper: 50}\n"
     _, findings = check_folder(tmp_path, {"robot.urdf": ROBOT, "joint_limits.yaml": spec})

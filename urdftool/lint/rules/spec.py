@@ -64,7 +64,7 @@ def _parse(file, urdf_joints):
         if key not in TOP_KEYS:
             problems.append((data.lines[key], f"unknown key '{key}'; valid keys: {', '.join(TOP_KEYS)}"))
     unit = data.get("unit")
-    if unit not in UNITS:
+    if not isinstance(unit, str) or unit not in UNITS:  # ('unit: [deg]' is unhashable: U900)
         problems.append((data.lines["unit"], f"unit '{unit}' must be deg or rad"))
         unit = None
     tolerance = data.get("tolerance", 0)
