@@ -267,8 +267,10 @@ def controller_joint_not_actuated(robot):
     parameter), whatever transmissions say.
 
     A ROS 2 controller's joint needs a ``<ros2_control>`` entry: a ROS 1 ``<transmission>``
-    outside ``<ros2_control>`` offers it nothing (a stale generated URDF beside the xacro the
-    launch files build).
+    outside ``<ros2_control>`` offers it nothing. Checked in a robot that has ``<ros2_control>``
+    at all: one without is no robot a ROS 2 controller runs on (a stale generated URDF beside
+    the xacro the launch files build, whose controller file is the xacro's: naranjelio's, the
+    A1's ``urdf/robot.urdf``), and nothing is said of it.
 
     A MoveIt ``GripperCommand`` controller's joint that is a ``<mimic>`` of another of its
     joints is not commanded (MoveIt sends the action one joint's position).
@@ -279,9 +281,10 @@ def controller_joint_not_actuated(robot):
     if not transmissions(robot) and not robot.children("ros2_control"):
         return
     own_hardware = control_plugin(robot) is None  # ROS 1 transmissions nothing here reads
+    ros2_control = bool(robot.children("ros2_control"))
     for controller in controllers(robot):
-        if controller.is_state:
-            continue
+        if controller.is_state or controller.ros == 2 and not ros2_control:
+            continue  # (a URDF with no <ros2_control> is no robot a ROS 2 controller runs on)
         offered = _offered(robot, controller)
         following = _gripper_followers(robot, controller)
         for ref in _urdf_joints(robot, controller):
