@@ -462,3 +462,16 @@ def test_an_element_named_for_an_included_files_root_macro_says_it_calls_none(tm
     [finding] = [f for f in result.findings if f.code == "U022"]
     assert "it calls no macro: arm.xacro's root element is <xacro:macro name=\"arm\">" in \
         finding.message, finding.message
+
+
+def test_the_first_element_of_a_file_is_found_past_its_prologue_by_searches():
+    """The root element _macro_file_root asks about: past white space, the declaration,
+    comments (one holding '>' and '--'), a DOCTYPE; a regular expression matching them all had
+    a generated URDF of many comments (match-ROS's mur620.urdf) take minutes to not match."""
+    from urdftool.lint.rules.vocabulary import _first_element
+
+    data = (b'<?xml version="1.0"?>\n<!-- a -> b -- c -->\n<!DOCTYPE robot>\n'
+            b'<!-- again -->\n  <xacro:macro name="m"/>')
+    assert data[_first_element(data):].startswith(b"<xacro:macro")
+    assert _first_element(b"<!-- " * 10000) is None
+    assert _first_element(b"<!-- x -->" * 10000 + b"<robot/>") == 100000

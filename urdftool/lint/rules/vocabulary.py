@@ -389,15 +389,35 @@ def _macro_file_root(robot, name: str) -> str:
     otherwise."""
     import os
 
-    root = re.compile(rb"\A(?:\s|<\?[^>]*\?>|<!--.*?-->)*<xacro:macro\s[^>]*\bname\s*=\s*[\"']"
-                      + re.escape(name.encode()) + rb"[\"']", re.DOTALL)
+    wanted = re.compile(rb"<xacro:macro\s[^>]*?\bname\s*=\s*[\"']" + re.escape(name.encode())
+                        + rb"[\"']")
     for path, data in robot.sources.items():
-        if root.match(data):
+        start = _first_element(data)
+        if start is not None and wanted.match(data, start):
             return (f"; it calls no macro: {os.path.basename(path)}'s root element is "
                     f"<xacro:macro name=\"{name}\">, whose body xacro inserts where the file is "
                     "included (a file's root is never defined as a macro): remove the element, "
                     "or wrap the macro in a <robot> root and call it <xacro:" + name + "/>")
     return ""
+
+
+def _first_element(data: bytes) -> int | None:
+    """Where the first element of an XML file starts, past white space, the declaration,
+    processing instructions and comments (each skipped by a search: linear in the file, where
+    one regular expression matching them all backtracked for minutes on a generated URDF of
+    many comments); None when the file has none."""
+    at = 0
+    while True:
+        while at < len(data) and data[at:at + 1].isspace():
+            at += 1
+        if data.startswith(b"<!--", at):
+            end = data.find(b"-->", at + 4)
+            at = end + 3 if end >= 0 else len(data)
+        elif data.startswith(b"<?", at) or data.startswith(b"<!", at):
+            end = data.find(b">", at)
+            at = end + 1 if end >= 0 else len(data)
+        else:
+            return at if data.startswith(b"<", at) else None
 
 
 def _read_elsewhere(unknown) -> str:
