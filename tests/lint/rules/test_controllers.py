@@ -43,6 +43,26 @@ def test_ros2_layout_trajectory_controller_command_interfaces(tmp_path):
     assert "offers velocity; set command_interfaces to [velocity]" in findings[0].message
 
 
+def test_a_ros2_controller_is_offered_nothing_by_ros1_transmissions(tmp_path):
+    """naranjelio's stale naranjelio.urdf: ROS 1 transmissions (EffortJointInterface), no
+    <ros2_control>, and the package's ROS 2 JointTrajectoryController commanding position.
+    ros2_control reads no transmission outside <ros2_control>: the joint offers the ROS 2
+    controller nothing, so it was wrong to say it "offers effort" (U604); what is missing is
+    its <ros2_control> joint (U603), in a robot that has <ros2_control> for other joints; a
+    robot with none at all (naranjelio's stale URDF beside the xacro its launch file builds)
+    is no robot a ROS 2 controller runs on, and nothing is said."""
+    tx = TX.format(iface="hardware_interface/EffortJointInterface")
+    yaml = ROS2_YAML.format(type="joint_trajectory_controller/JointTrajectoryController", claim="position")
+    found, _ = check_folder(tmp_path, {"robot.urdf": HEAD_ROBOT.format(body=tx),
+                                       "config/c.yaml": yaml}, select=ONLY_U60)
+    assert found == [], found
+    other = ROS2.format(iface="position").replace("head_joint", "cam_joint")
+    found, findings = check_folder(tmp_path / "2", {"robot.urdf": HEAD_ROBOT.format(body=tx + other),
+                                                    "config/c.yaml": yaml}, select=ONLY_U60)
+    assert [code for *_, code in found if code.startswith("U60")] == ["U603"], found
+    assert "has no <ros2_control> joint, only a transmission" in findings[0].message
+
+
 def test_ros2_forward_command_controller_uses_interface_name(tmp_path):
     robot = HEAD_ROBOT.format(body=ROS2.format(iface="effort"))
     yaml = ROS2_YAML.format(type="forward_command_controller/ForwardCommandController", claim="effort")

@@ -216,6 +216,24 @@ def test_an_optical_frame_on_a_part_that_is_no_camera_body_is_not_judged_by_its_
     assert [code for code, _ in _found(tmp_path, text, ("U417",))] == ["U417"]
 
 
+def test_a_link_sharing_only_a_place_word_with_an_optical_frame_is_no_camera_body(tmp_path):
+    """rm_description's rail sentry: lower_camera_optical_frame is fixed to lower_pitch, the
+    lower gimbal's pitch link, by a calibrated rotation (-1.6547 0.0528 -1.5597), and was
+    judged from the pitch link's axes because both names hold 'lower' (a false U417). A side,
+    a position or an index says where a part is, not that it is the camera; a shared word that
+    names the part (high_def) still makes the body the camera's."""
+    robot = """<link name="base_link"/>
+<link name="{body}"/><joint name="bj" type="fixed"><parent link="base_link"/>
+  <child link="{body}"/></joint>
+<link name="{optical}"/><joint name="oj" type="fixed"><parent link="{body}"/>
+  <child link="{optical}"/><origin rpy="-1.6547 0.0528 -1.5597"/></joint>"""
+    for body, optical in (("lower_pitch", "lower_camera_optical_frame"),
+                          ("left_2_link", "left_2_optical_frame")):
+        assert _found(tmp_path, robot.format(body=body, optical=optical), ("U417",)) == [], body
+    judged = robot.format(body="high_def_frame", optical="high_def_optical_frame")
+    assert [code for code, _ in _found(tmp_path, judged, ("U417",))] == ["U417"]
+
+
 def test_an_optical_frame_of_a_camera_tilted_in_its_mount_is_a_note(tmp_path):
     """Bit-Bots' Pi Plus: camera_link is a CAD part on the head, and the camera's 30-degree
     tilt is written into the optical joints (rpy="-2.093 0 -1.57"): the optical frames look

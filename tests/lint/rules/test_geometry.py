@@ -777,6 +777,32 @@ def test_a_relative_mesh_under_a_folder_not_beside_the_robot_is_not_certainly_mi
         assert severity == Severity.ERROR and "not certain" not in message, (uri, message)
 
 
+def test_a_mesh_the_robots_mujoco_meshdir_leads_to_is_not_certainly_missing(tmp_path):
+    """Inspire's hand URDF (EuncheolIm/Inspire_hand_description) writes bare mesh names
+    (``right_base_link.obj``) and ``<mujoco><compiler meshdir="../collision/"/></mujoco>``:
+    MuJoCo, the loader it is written for, finds every file there; only a loader reading the
+    path beside the file misses it. 25 U408 errors were false: a warning naming both. A
+    meshdir that holds no such file keeps the error."""
+    from urdftool.diagnostics import Severity
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / ".git").mkdir()
+    _stl(tmp_path / "hand" / "collision" / "palm.stl")
+    robot = tmp_path / "hand" / "urdf" / "hand.urdf"
+    robot.parent.mkdir(parents=True)
+    for uri, meshdir, severity in (("palm.stl", "../collision/", Severity.WARNING),
+                                   ("parts/palm.stl", "../collision", Severity.WARNING),
+                                   ("palm.stl", "../visual/", Severity.ERROR)):
+        robot.write_text(f'<robot name="r"><mujoco><compiler meshdir="{meshdir}"/></mujoco>'
+                         f'<link name="a"><collision><geometry><mesh filename="{uri}"/>'
+                         '</geometry></collision></link></robot>')
+        found = [f for f in load_and_check(str(robot), CheckOptions()).findings if f.code == "U408"]
+        assert [f.severity for f in found] == [severity], (uri, meshdir, found)
+        if severity == Severity.WARNING:
+            assert "MuJoCo, which looks in the robot's <mujoco><compiler meshdir=" in \
+                found[0].message and "hand/collision/palm.stl" in found[0].message
+
+
 def test_a_visual_material_without_a_name_says_what_urdfdom_drops(tmp_path):
     """unitree's h1_2.urdf: 55 visuals' <material> without a name said only that. urdfdom
     ("Visual material must contain a name attribute") stops reading the link there; model.cpp

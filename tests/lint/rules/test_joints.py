@@ -140,6 +140,29 @@ def test_a_negative_limit_says_what_each_consumer_makes_of_it(tmp_path, attribut
     assert finding.severity.name == "WARNING"
     assert "cannot move" not in finding.message and "enforce no limit" in finding.message
     assert f"Pinocchio refuses the model (min_{attribute} above max_{attribute})" in finding.message
+def test_a_zero_velocity_moveit_plans_from_its_joint_limits_yaml_says_so(tmp_path):
+    """The JAXA IVR's body joints: velocity="0" in the URDF, and the MoveIt package's
+    joint_limits.yaml switching on max_velocity 3.27 for them, which MoveIt plans with: it was
+    said that MoveIt's time parameterisation holds them still. What clamps commands to the
+    URDF's limit still does (the warning stays)."""
+    robot = ('<robot name="r"><link name="base_link"/><link name="head"/>\n'
+             '<joint name="head_joint" type="revolute"><parent link="base_link"/>'
+             '<child link="head"/><limit lower="0" upper="1" effort="1" velocity="0"/></joint>'
+             '</robot>\n')
+    srdf = ('<robot name="r">\n<group name="head">\n<chain base_link="base_link" '
+            'tip_link="head"/>\n</group>\n</robot>\n')
+    files = {"robot.urdf": robot, "r_moveit_config/config/r.srdf": srdf,
+             "r_moveit_config/config/joint_limits.yaml":
+                 "joint_limits:\n  head_joint:\n    has_velocity_limits: true\n"
+                 "    max_velocity: 3.27\n"}
+    found, findings = check_folder(tmp_path, files, select=("U212",),
+                                   srdf=str(tmp_path / "r_moveit_config/config/r.srdf"))
+    [finding] = findings
+    assert "MoveIt's time parameterisation" not in finding.message, finding.message
+    assert "MoveIt plans with the max_velocity 3.27 of its joint_limits.yaml" in finding.message
+    assert "holds the joint still" in finding.message
+
+
 ZERO_EFFORT = ('<robot name="r"><link name="base_link"/><link name="a"/>\n'
                '<joint name="j" type="revolute"><parent link="base_link"/><child link="a"/>'
                '<limit lower="0" upper="1" effort="0" velocity="2"/></joint>{body}</robot>\n')

@@ -153,6 +153,8 @@ def test_validation_and_the_distribution_that_allows_it(tmp_path):
     # state_publish_rate is Humble's, i_clamp Humble's and Jazzy's: no finding
     assert found == [("c.yaml", 13, "U631")]
     assert "must be one of splines, none" in findings[0].message
+    # the condition joined as every clause is (PAROL6's "(effort is not one) ; if ...")
+    assert " ;" not in findings[0].message, findings[0].message
 
 
 def test_unknown_parameter_with_a_suggestion_once_per_unknown_group(tmp_path):

@@ -442,3 +442,36 @@ def test_the_number_gate_finds_each_spelling_its_needles_name():
     texts += [text[:9] + needle + text[9:] for text in list(texts) for needle in needles]
     for text in texts:
         assert _suspect(text) == any(needle in text for needle in needles), text
+
+
+def test_an_element_named_for_an_included_files_root_macro_says_it_calls_none(tmp_path):
+    """Quori's quori.xacro includes quori_kinematics.xacro, whose root element is
+    <xacro:macro name="quori_kinematics">, and writes <quori_kinematics/>: xacro inserts the
+    root's children at the include (the links are there) and defines no macro, so the element
+    stays in the output. "has no effect" alone did not say why."""
+    macro = ('<?xml version="1.0"?>\n<xacro:macro name="arm" xmlns:xacro="http://ros.org/wiki/xacro">'
+             '<link name="arm"/><joint name="j" type="fixed"><parent link="base_link"/>'
+             '<child link="arm"/></joint></xacro:macro>\n')
+    robot = ('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="base_link"/>'
+             '<xacro:include filename="arm.xacro"/>\n<arm/>\n</robot>\n')
+    from urdftool.lint.engine import CheckOptions, load_and_check
+
+    (tmp_path / "arm.xacro").write_text(macro)
+    (tmp_path / "robot.urdf.xacro").write_text(robot)
+    result = load_and_check(str(tmp_path / "robot.urdf.xacro"), CheckOptions())
+    [finding] = [f for f in result.findings if f.code == "U022"]
+    assert "it calls no macro: arm.xacro's root element is <xacro:macro name=\"arm\">" in \
+        finding.message, finding.message
+
+
+def test_the_first_element_of_a_file_is_found_past_its_prologue_by_searches():
+    """The root element _macro_file_root asks about: past white space, the declaration,
+    comments (one holding '>' and '--'), a DOCTYPE; a regular expression matching them all had
+    a generated URDF of many comments (match-ROS's mur620.urdf) take minutes to not match."""
+    from urdftool.lint.rules.vocabulary import _first_element
+
+    data = (b'<?xml version="1.0"?>\n<!-- a -> b -- c -->\n<!DOCTYPE robot>\n'
+            b'<!-- again -->\n  <xacro:macro name="m"/>')
+    assert data[_first_element(data):].startswith(b"<xacro:macro")
+    assert _first_element(b"<!-- " * 10000) is None
+    assert _first_element(b"<!-- x -->" * 10000 + b"<robot/>") == 100000

@@ -84,6 +84,7 @@ def _resolve(robot, uri: str) -> Path:
         if not uri.startswith("file://"):  # (an absolute path names one machine's files)
             found = _across(robot, uri, found, os.path.join(os.fspath(robot.base_dir), uri))
         found = _from_cwd(robot, uri, os.fspath(located.path), found)
+        found = _in_mujoco_meshdir(robot, uri, os.fspath(located.path), found)
     return _raised(found)
 
 
@@ -215,6 +216,37 @@ def _from_cwd(robot, uri: str, path: str, found: Path | MeshProblem) -> Path | M
     return MeshProblem("missing", (
         f"mesh '{uri}' not found: written with $(cwd), the folder xacro runs from; it is there "
         f"when xacro runs from '{display_path(folder)}'"), certain=False)
+
+
+def _in_mujoco_meshdir(robot, uri: str, path: str,
+                       found: Path | MeshProblem) -> Path | MeshProblem:
+    """``found``, a relative mesh path missing beside the robot file (at ``path``), said not certain when the
+    robot's ``<mujoco><compiler meshdir=...>`` (read by MuJoCo alone: :func:`~urdftool.simulators.
+    mujoco_compiler`) leads MuJoCo to the file: below that folder as written, or by its file
+    name alone (``strippath``, MuJoCo's default for URDF before 3.7.0). Inspire's hand URDF
+    writes bare names (``right_base_link.obj``) and ``meshdir="../collision/"``, for MuJoCo,
+    which finds every file; a loader reading paths beside the file does not (a warning naming
+    that, not an error). ``found`` otherwise."""
+    from urdftool.simulators import mujoco_compiler
+
+    if not isinstance(found, MeshProblem) or found.kind != "missing" or not found.certain \
+            or uri.startswith("file://") or os.path.isabs(uri):
+        return found
+    compiler = mujoco_compiler(robot.root) if robot.root is not None else None
+    meshdir = compiler.get("meshdir") if compiler is not None else None
+    if not meshdir or robot.path == "-":
+        return found
+    folder = os.path.join(os.fspath(robot.base_dir), meshdir)
+    for named in dict.fromkeys((os.path.join(folder, uri),
+                                os.path.join(folder, uri.replace("\\", "/").rsplit("/", 1)[-1]))):
+        there = _checked(uri, named, os.fspath(robot.base_dir), None)
+        if isinstance(there, Path):
+            return MeshProblem("missing", (
+                f"mesh '{uri}' not found beside the robot file (looked at {path}), where "
+                "PyBullet, Pinocchio and other loaders that read a path from the file look; "
+                f"MuJoCo, which looks in the robot's <mujoco><compiler meshdir=\"{meshdir}\">, "
+                f"finds it at {display_path(there)}"), certain=False)
+    return found
 
 
 def _no_package(robot, uri: str, package: str, tail: str, error) -> MeshProblem:

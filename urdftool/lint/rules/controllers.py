@@ -317,6 +317,12 @@ def controller_joint_not_actuated(robot):
     registers the joints it is written for (ros_control_boilerplate's, from its ``joints``
     parameter), whatever transmissions say.
 
+    A ROS 2 controller's joint needs a ``<ros2_control>`` entry: a ROS 1 ``<transmission>``
+    outside ``<ros2_control>`` offers it nothing. Checked in a robot that has ``<ros2_control>``
+    at all: one without is no robot a ROS 2 controller runs on (a stale generated URDF beside
+    the xacro the launch files build, whose controller file is the xacro's: naranjelio's, the
+    A1's ``urdf/robot.urdf``), and nothing is said of it.
+
     A MoveIt ``GripperCommand`` controller's joint that is a ``<mimic>`` of another of its
     joints is not commanded (MoveIt sends the action one joint's position).
 
@@ -325,19 +331,26 @@ def controller_joint_not_actuated(robot):
     """
     if not transmissions(robot) and not robot.children("ros2_control"):
         return
-    offered = command_interfaces(robot)
     own_hardware = control_plugin(robot) is None  # ROS 1 transmissions nothing here reads
+    ros2_control = bool(robot.children("ros2_control"))
     for controller in controllers(robot):
-        if controller.is_state:
-            continue
+        if controller.is_state or controller.ros == 2 and not ros2_control:
+            continue  # (a URDF with no <ros2_control> is no robot a ROS 2 controller runs on)
+        offered = _offered(robot, controller)
         following = _gripper_followers(robot, controller)
         for ref in _urdf_joints(robot, controller):
             joint = robot.joints.get(ref.name)
             if joint is None or ref.name in offered or ref.name in following:
                 continue
-            what = ("is a fixed joint; remove it from the controller" if joint.get("type") == "fixed"
-                    else "has no transmission or ros2_control joint; add one for it, or remove "
-                         "it from the controller")
+            if joint.get("type") == "fixed":
+                what = "is a fixed joint; remove it from the controller"
+            elif controller.ros == 2 and ref.name in command_interfaces(robot):
+                what = ("has no <ros2_control> joint, only a transmission, which ros2_control "
+                        "reads only inside <ros2_control>; add a <ros2_control> joint for it, "
+                        "or remove it from the controller")
+            else:
+                what = ("has no transmission or ros2_control joint; add one for it, or remove "
+                        "it from the controller")
             message = hedged(robot, controller, f"{label(controller)}: joint '{ref.name}' {what}")
             if message is not None and own_hardware and joint.get("type") != "fixed":
                 message = Conditional(
@@ -417,19 +430,26 @@ def controller_interface_mismatch(robot):
             f"where {ref.name} offers {has}; {_interface_fix(controller, has_set, missing)}")
 
 
+def _offered(robot, controller: Controller) -> dict[str, set]:
+    """Joint name -> the command interfaces it offers to ``controller``: the one owner of that
+    fact for U603 and U604. A ROS 2 controller gets what the joints' ``<ros2_control>`` entries
+    offer and nothing else (ros2_control reads no transmission outside ``<ros2_control>``: a
+    stale URDF's ROS 1 transmissions offered naranjelio's JointTrajectoryController 'effort');
+    a ROS 1 one (or one of no known version) the transmissions' and ``<ros2_control>``'s."""
+    return ros2_command_interfaces(robot) if controller.ros == 2 else command_interfaces(robot)
+
+
 def _offers(robot, controller: Controller, name: str) -> set | None:
-    """The command interfaces joint ``name`` offers to ``controller`` (ROS 2: its
-    ``<ros2_control>`` entry; else its transmissions), None when not known."""
-    offered = command_interfaces(robot)
-    ros2 = ros2_command_interfaces(robot)
+    """The command interfaces joint ``name`` offers to ``controller`` (:func:`_offered`), None
+    when not known (not a joint, not offered at all: U603's, or a transmission interface
+    urdftool cannot read)."""
     unknown = robot.memo(_offers, lambda: {
         joint.name for t in transmissions(robot) for joint in transmission_joints(robot, t)
         if any(not interface_kind(i.text)[0] for i in joint.interfaces)})  # U503
     if name not in robot.joints:
         return None
-    if controller.ros == 2 and name in ros2:
-        return ros2[name]
-    if name in offered and name not in unknown:
+    offered = _offered(robot, controller)
+    if name in offered and (controller.ros == 2 or name not in unknown):
         return offered[name]
     return None
 

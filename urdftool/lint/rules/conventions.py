@@ -83,20 +83,28 @@ def _camera_frames(robot):
 _CAMERA_BODY = re.compile(r"cam|rgb|depth|stereo|kinect|xtion|realsense|zed|oak|lens|infra",
                           re.IGNORECASE)
 _NAME_WORDS = re.compile(r"[a-z]+|[0-9]+")
+# words of a link name that say where a part is or which of several it is, not what it is: two
+# links sharing one are not one part (the sentry's lower_pitch, a gimbal link, and its
+# lower_camera_optical_frame); an index is a number, said apart
+_PLACE_WORDS = frozenset({"left", "right", "l", "r", "front", "rear", "back", "fore", "aft",
+                          "upper", "lower", "up", "down", "top", "bottom", "middle", "mid",
+                          "center", "centre", "side", "inner", "outer"})
 
 
 def _camera_body(robot, body: str, optical: str) -> bool:
     """Whether link ``body`` is the camera body of optical frame ``optical``, whose axes REP 103
     fixes (x forward): a Gazebo camera sensor sits on it, its name says camera, or it shares a
-    word with the optical frame's name (``high_def_frame`` for ``high_def_optical_frame``).
-    Any other link above is a part of the robot (a servo of a CAD export, a head) whose axes
-    say nothing of where the camera looks."""
+    word with the optical frame's name (``high_def_frame`` for ``high_def_optical_frame``)
+    that says what the part is, not only where or which of several (a side, a position, an
+    index: :data:`_PLACE_WORDS`). Any other link above is a part of the robot (a servo of a CAD
+    export, a head, a gimbal's pitch link) whose axes say nothing of where the camera looks."""
     if _CAMERA_BODY.search(body) or any(
             gazebo.get("reference") == body and (sensor.get("type") or "").lower()
             in CAMERA_SENSORS for gazebo, sensor in gazebo_sensors(robot)):
         return True
     words = set(_NAME_WORDS.findall(optical.lower())) - {"optical", "frame", "link"}
-    return bool(words & set(_NAME_WORDS.findall(body.lower())))
+    shared = words & set(_NAME_WORDS.findall(body.lower()))
+    return any(not word.isdigit() and word not in _PLACE_WORDS for word in shared)
 
 
 def _reference_link(robot, name: str) -> str | None:
@@ -126,8 +134,10 @@ def optical_frame_rotation(robot):
     against the nearest link above whose name does not (an optical frame fixed to another with
     the same axes is judged through that one) when that link is the camera's body (a Gazebo
     camera sits on it, its name says camera, or it shares a word with the optical frame's
-    name): an optical frame fixed to a servo of a CAD export is right or wrong whatever the
-    servo's axes, and is not judged from them; and for the frame a Gazebo camera
+    name that names the part, not only a side, a position or an index: the sentry's
+    ``lower_pitch`` is no camera body of ``lower_camera_optical_frame``): an optical frame
+    fixed to a servo of a CAD export is right or wrong whatever the servo's axes, and is not
+    judged from them; and for the frame a Gazebo camera
     sensor's plugin stamps its images with (``frameName``, ``frame_name``,
     ``optical_frame_id``, ``gz_frame_id``), against the camera itself (its link, the sensor's
     ``<pose>`` and the ``<pose>`` of its ``<camera>``, which Gazebo composes with the

@@ -473,7 +473,10 @@ def mesh_not_found(robot):
     A **warning**, too, for a relative path with no scheme into a folder that is not beside
     the robot file and holds none of the repository's meshes (UWSim's
     ``robot/GIRONA500/hull.osg``, found on its data path ``~/.uwsim/data``; a YCB object's
-    ``ycb/NAME/...``): a loader given a data or search path finds it there.
+    ``ycb/NAME/...``): a loader given a data or search path finds it there. And a **warning**
+    for a relative path the robot's ``<mujoco><compiler meshdir=...>`` leads MuJoCo to (below
+    that folder, or by its file name alone): MuJoCo finds it, loaders reading the path beside
+    the file do not (Inspire's hand, ``meshdir="../collision/"`` and bare file names).
 
     The message names where the repository has the file: beside it in other capitals, or,
     when the folder it was looked for in holds no mesh at all (the folder is wrong, not the

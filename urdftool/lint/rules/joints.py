@@ -406,7 +406,8 @@ def zero_effort_or_velocity(robot):
     """A moving joint's limit allows zero (or negative) effort or velocity.
 
     Controllers clamp commands to these limits, and MoveIt time-parameterises with the velocity:
-    a zero makes the joint immovable for them. An effort of 0 is the ROS-Industrial exporters'
+    a zero makes the joint immovable for them (MoveIt plans with the robot's joint_limits.yaml
+    instead when that switches on a velocity for the joint, and the message says so). An effort of 0 is the ROS-Industrial exporters'
     "unknown": MoveIt and robot_state_publisher do not read effort, so the message names who
     holds the joint still, as a warning naming what simulates the robot (a Gazebo plugin in
     it, a launch file spawning it, ``--target``) or the ``<ros2_control>`` hardware that takes
@@ -433,6 +434,8 @@ def zero_effort_or_velocity(robot):
             values, _ = number_tuple(text, 1)
             if values and values[0] == 0 and attribute == "effort":
                 yield limit, _zero_effort(robot, _name(joint))
+            elif values and values[0] == 0 and attribute == "velocity":
+                yield limit, _zero_velocity(robot, _name(joint))
             elif values and values[0] == 0:
                 yield limit, (f"joint '{_name(joint)}': {attribute} limit is 0; "
                               + _HELD_STILL_BY[attribute])
@@ -442,6 +445,27 @@ def zero_effort_or_velocity(robot):
                               "is negative, the URDF specification reads its absolute value, and "
                               f"Pinocchio refuses the model (min_{attribute} above max_{attribute}); "
                               f"write the real {attribute} limit")
+
+
+def _zero_velocity(robot, name: str) -> str:
+    """U212's message for a velocity limit of 0: MoveIt's time parameterisation holds the joint
+    still unless the robot's MoveIt joint_limits.yaml switches on a velocity of its own for it,
+    which MoveIt plans with instead (the JAXA IVR's body joints: max_velocity 3.27 there, as
+    U816 reads it); what clamps commands to the URDF's limit holds it still either way."""
+    from urdftool.description import moveit_config
+    from urdftool.description.companions import companions
+
+    file = companions(robot).planning_limits
+    entries = robot.memo(_zero_velocity, lambda: moveit_config.planning_limits(file)[0]
+                         if file is not None else [])
+    planned = next((entry.values.get("max_velocity") for entry in entries
+                    if entry.joint == name), None)
+    said = f"joint '{name}': velocity limit is 0; "
+    if isinstance(planned, (int, float)) and not isinstance(planned, bool) and planned > 0:
+        return (said + "what clamps commands to it (ros2_control's joint limits, a simulator) "
+                f"holds the joint still; MoveIt plans with the max_velocity {planned:g} of its "
+                f"joint_limits.yaml ({file.display}) instead")
+    return said + _HELD_STILL_BY["velocity"]
 
 
 def _zero_effort(robot, name: str):

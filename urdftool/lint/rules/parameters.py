@@ -198,7 +198,7 @@ def controller_parameter_invalid(robot):
         if known and all(problems):
             shown = f"[{', '.join(map(str, value))}]" if isinstance(value, list) else value
             yield controller.file.at(line), (
-                f"{label(controller)}: {name} is {shown!s}, but it {'; it '.join(problems[0])} "
+                f"{label(controller)}: {name} is {shown!s}, but it {'; it '.join(problems[0])}"
                 f"; {condition}"), None, severity
 
 

@@ -346,7 +346,10 @@ def no_effect(robot):
     axis, a ``<material>`` in a ``<collision>`` colours nothing. Where a name is valid elsewhere
     the message says where. An attribute another program is known to read (``dont_collapse``
     on a ``<joint>``: Isaac Gym's and Isaac Sim's importers keep the fixed joint) is written
-    for it on purpose: a **note** saying which.
+    for it on purpose: a **note** saying which. An element named as a macro whose file has
+    ``<xacro:macro name="...">`` as its root element calls none (xacro inserts that root's
+    children at the include and defines no macro): the message says so (Quori's
+    ``<quori_kinematics/>``).
 
     Bad: ``<axis xyz="0 0 1" rpy="0 1.57 0"/>``, ``<collision><material name="red"/>...``
     Good: ``<axis xyz="1 0 0"/>`` (turn the joint frame with ``<origin rpy>`` instead)
@@ -367,7 +370,7 @@ def no_effect(robot):
             places = [p for p in where_valid(unknown.name) if p != unknown.place]
             tags = dict.fromkeys(f"<{_tag(p)}>" for p in places)  # a visual's and a global <material>
             hint = ("; urdfdom reads it only in " + ", ".join(tags) if places
-                    else _read_elsewhere(unknown))
+                    else _read_elsewhere(unknown) or _macro_file_root(robot, unknown.name))
             yield unknown.element, f"{_what(unknown)} has no effect: {_unread(1)}{hint}"
     for element, names in unread.items():
         listed = ", ".join(f"'{name}'" for name in names)
@@ -376,6 +379,45 @@ def no_effect(robot):
         reads = f"it reads {', '.join(read)}" if read else f"URDF gives <{element.tag}> no attributes"
         yield element, (f"<{element.tag}> {noun} {listed} {'has' if len(names) == 1 else 'have'} "
                         f"no effect: {_unread(len(names))}; {reads}")
+
+
+def _macro_file_root(robot, name: str) -> str:
+    """Why an element named as a macro calls none, when a file the robot was built from has
+    ``<xacro:macro name="NAME">`` as its root element (Quori's quori_kinematics.xacro, called
+    ``<quori_kinematics/>``): xacro inserts an included file's root's children at the include,
+    so the macro's body is in the robot already and no macro of that name is ever defined; ""
+    otherwise."""
+    import os
+
+    wanted = re.compile(rb"<xacro:macro\s[^>]*?\bname\s*=\s*[\"']" + re.escape(name.encode())
+                        + rb"[\"']")
+    for path, data in robot.sources.items():
+        start = _first_element(data)
+        if start is not None and wanted.match(data, start):
+            return (f"; it calls no macro: {os.path.basename(path)}'s root element is "
+                    f"<xacro:macro name=\"{name}\">, whose body xacro inserts where the file is "
+                    "included (a file's root is never defined as a macro): remove the element, "
+                    "or wrap the macro in a <robot> root and call it <xacro:" + name + "/>")
+    return ""
+
+
+def _first_element(data: bytes) -> int | None:
+    """Where the first element of an XML file starts, past white space, the declaration,
+    processing instructions and comments (each skipped by a search: linear in the file, where
+    one regular expression matching them all backtracked for minutes on a generated URDF of
+    many comments); None when the file has none."""
+    at = 0
+    while True:
+        while at < len(data) and data[at:at + 1].isspace():
+            at += 1
+        if data.startswith(b"<!--", at):
+            end = data.find(b"-->", at + 4)
+            at = end + 3 if end >= 0 else len(data)
+        elif data.startswith(b"<?", at) or data.startswith(b"<!", at):
+            end = data.find(b">", at)
+            at = end + 1 if end >= 0 else len(data)
+        else:
+            return at if data.startswith(b"<", at) else None
 
 
 def _read_elsewhere(unknown) -> str:
