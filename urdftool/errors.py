@@ -315,8 +315,18 @@ def shown_word(name: str) -> str:
     return name if len(name) <= _SHOWN_NAME else f"{name[:_SHOWN_NAME]}... ({len(name)} characters)"
 
 
-# ``{name}`` with no ``$`` before it: xacro leaves it as written (a substitution's "$" forgotten)
+# ``{name}`` with no ``$`` before it: xacro leaves it as written (a substitution's "$" forgotten);
+# in a value, any ``{expression}`` (``{-2*pi}``)
 _BARE_SUBSTITUTION = re.compile(r"(?<!\$)\{([A-Za-z_]\w*)\}")
+BARE_EXPRESSION = re.compile(r"(?<!\$)\{([^{}$]+)\}")
+
+
+def bare_substitution(text: str, pattern: re.Pattern = _BARE_SUBSTITUTION) -> str | None:
+    """Why ``text`` holds a ``{...}`` that ``pattern`` finds with no ``$`` before it (xacro
+    leaves it as written), or None."""
+    bare = pattern.search(text)
+    return (f"'{bare.group(0)}' is a xacro substitution without its '$' "
+            f"(${{{bare.group(1)}}}), which xacro leaves as written") if bare else None
 
 
 def available(kind: str, wanted: str, names, *more: tuple[str, object]) -> str:
@@ -329,7 +339,7 @@ def available(kind: str, wanted: str, names, *more: tuple[str, object]) -> str:
     # (unnamed elements are another rule's business)
     kinds = [(one, sorted({name for name in some if name})) for one, some in ((kind, names), *more)]
     every = sorted({name for _, some in kinds for name in some})
-    bare = _BARE_SUBSTITUTION.search(wanted)
+    bare = bare_substitution(wanted)
     # a name written with white space at an end, which readers keep: shown alike unquoted
     spaced = None if bare else next((name for name in every if name != wanted
                                      and name.strip() == wanted.strip()), None)
@@ -339,8 +349,7 @@ def available(kind: str, wanted: str, names, *more: tuple[str, object]) -> str:
         hint = (f"did you mean '{spaced}'? the two differ only in white space, which URDF "
                 "readers keep (names are compared as written); ")
     if bare:
-        hint = (f"'{bare.group(0)}' is a xacro substitution without its '$' "
-                f"(${{{bare.group(1)}}}), which xacro leaves as written; ")
+        hint = bare + "; "
     quote = any(name != name.strip() for name in every)
     lists = [(one, some, f"available {one}: {listed(some, quote=quote) or '(none)'}")
              for one, some in kinds]

@@ -9,8 +9,9 @@ import pytest
 from lxml import etree
 
 from urdftool.description.load import load
-from urdftool.description.values import (Origin, number_tuple, origin, origin_pose,
-                                         parse_numbers, urdfdom_refuses, urdfdom_spelling)
+from urdftool.description.values import (Origin, from_chars_double, number_tuple, origin,
+                                         origin_pose, parse_numbers, stream_double, strtod_double,
+                                         urdfdom_refuses, urdfdom_spelling)
 from urdftool.kinematics import dh, transforms
 from urdftool.physics import mass, mat3
 
@@ -207,3 +208,34 @@ def test_a_text_that_is_one_part_is_quoted_once():
         None, "'laser_frame_length' is not a number")
     assert number_tuple.__wrapped__(" width ", 1) == (None, "'width' is not a number")
     assert number_tuple.__wrapped__("0 x 0", 3) == (None, "'x' is not a number (in '0 x 0')")
+
+
+# What the C++ parsers of ros2_control and its Gazebo plugins make of a <param>'s text, as g++ 12
+# compiled lexical_casts.cpp's two builds (istringstream; from_chars after one '+') and
+# std::stod: (text, stream, from_chars, std::stod), None where the parser refuses the text.
+CXX_READS = [
+    ("1", 1.0, 1.0, 1.0), ("-1", -1.0, -1.0, -1.0), ("+1", 1.0, 1.0, 1.0),
+    ("+-1", None, -1.0, None), ("-+1", None, None, None), ("++1", None, None, None),
+    ("1.", 1.0, 1.0, 1.0), (".5", 0.5, 0.5, 0.5), (".", None, None, None), ("-", None, None, None),
+    ("1e5", 1e5, 1e5, 1e5), ("1E+5", 1e5, 1e5, 1e5), ("1e", None, None, 1.0), ("1e+", None, None, 1.0),
+    ("inf", None, None, math.inf), ("-inf", None, None, -math.inf), ("INF", None, None, math.inf),
+    ("infinity", None, None, math.inf), ("0x10", None, None, 16.0), ("0x1p3", None, None, 8.0),
+    (" 1", 1.0, None, 1.0), ("\t1", 1.0, None, 1.0), ("1 ", None, None, 1.0), ("\n1\n", None, None, 1.0),
+    ("1,5", None, None, 1.0), ("1_0", None, None, 1.0), ("1.0f", None, None, 1.0), ("1.5rad", None, None, 1.5),
+    ("0.0 # x", None, None, 0.0), ("1 2", None, None, 1.0), ("1e400", None, None, None),
+    ("-1e400", None, None, None), ("1.7976931348623159e308", None, None, None),
+    ("1e-400", 0.0, None, None), ("2e-324", 0.0, None, None), ("4.9e-324", 5e-324, 5e-324, None),
+    ("0x1p-1074", None, None, 5e-324), ("0x0e5p-5000", None, None, None),
+    ("1e-999999999", 0.0, None, None),  # (no 10**999999999 made to say it is not exact) ("00012", 12.0, 12.0, 12.0), ("1e0001", 10.0, 10.0, 10.0),
+    ("{-2*pi}", None, None, None), ("", None, None, None), ("true", None, None, None),
+    ("١", None, None, None), ("１", None, None, None),  # digits of other scripts
+]
+
+
+@pytest.mark.parametrize("text, stream, chars, stod", CXX_READS)
+def test_ros2_control_parsers_read_as_the_cxx_does(text, stream, chars, stod):
+    def same(value, expected):
+        return value == expected if expected is None or not math.isnan(expected) else math.isnan(value)
+    assert same(stream_double(text), stream)
+    assert same(from_chars_double(text), chars)
+    assert same(strtod_double(text), stod)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 
+from urdftool.description import values
 from urdftool.description.urdf import MOVING
 from urdftool.description.xml import children_named, first_child
 from urdftool.records import NEW, Record
@@ -174,6 +175,126 @@ def ros2_state_interfaces(robot) -> dict[str, set]:
         offered.setdefault(joint.get("name"), set()).update(
             c.get("name") for c in joint.findall("state_interface") if c.get("name"))
     return offered
+
+
+# --- the numbers of a ros2_control interface's <param>s, as their consumers read them ---------
+# (ros2_control's hardware_interface/src/component_parser.cpp, handle.hpp, the mock and Gazebo
+# hardware; as each distribution's current release reads them.) A configuration: ros2_control
+# of Humble (2.x), which reads a param's text as written, or of Jazzy and later (4.x and on),
+# which strips its white space (4.43.0, 5.12.0, 6.4.0) and is built as C++17 or as C++20
+# (values.stream_double or values.from_chars_double).
+HUMBLE, LATER_CXX17, LATER_CXX20 = "Humble", "Jazzy and later, C++17 build", "Jazzy and later, C++20 build"
+CONFIGURATIONS = (HUMBLE, LATER_CXX17, LATER_CXX20)
+LATER = (LATER_CXX17, LATER_CXX20)
+# The ros-controls hardware that runs in some configurations only (Gazebo Classic and the
+# fake_components alias end with Humble; gz_ros2_control's GazeboSimSystem starts with Jazzy;
+# Jazzy's gz_ros2_control loads ign_ros2_control/IgnitionSystem too). Any other runs in all.
+HARDWARE_CONFIGURATIONS = {"fake_components/GenericSystem": (HUMBLE,),
+                           "gazebo_ros2_control/GazeboSystem": (HUMBLE,),
+                           "gz_ros2_control/GazeboSimSystem": LATER}
+MOCK = ("mock_components/GenericSystem", "fake_components/GenericSystem")
+GAZEBO = ("gazebo_ros2_control/GazeboSystem", "gz_ros2_control/GazeboSimSystem",
+          "ign_ros2_control/IgnitionSystem")
+# The command interfaces whose min and max ros2_control (from 4.10.0) reads as joint limits
+# (component_parser.cpp update_interface_limits; position, velocity and effort only while their
+# limits are enabled, acceleration and jerk always).
+LIMITED = ("position", "velocity", "effort", "acceleration", "jerk")
+GAZEBO_STATES = ("position", "velocity", "effort")  # the state interfaces the Gazebo hardware
+# reads an initial_value of
+
+
+def ros2_control_double(configuration: str, text: str) -> float | None:
+    """``text`` as hardware_interface::stod reads it in ``configuration``, or None."""
+    if configuration == HUMBLE:
+        return values.stream_double(text)
+    stripped = text.strip(values.SPACE)
+    return (values.stream_double if configuration == LATER_CXX17 else values.from_chars_double)(stripped)
+
+
+def humble_gazebo_double(configuration: str, text: str) -> float | None:
+    """``text`` as Humble's gazebo_ros2_control and ign_ros2_control read an initial_value
+    (std::stod), and as Jazzy's gz_ros2_control does (hardware_interface::stod)."""
+    return values.strtod_double(text) if configuration == HUMBLE else ros2_control_double(configuration, text)
+
+
+def read_bound(text: str | None) -> float | None:
+    """The number ros2_control reads as a ``min`` or ``max`` (4.10.0 and later, either build),
+    or None when it reads none (then it skips both bounds of the interface)."""
+    found = {ros2_control_double(configuration, text or "") for configuration in LATER}
+    return None if len(found) != 1 else found.pop()
+
+
+class ParamReader(Record):
+    """Who reads a ``<param>``'s number in one configuration, how, and what a text it cannot
+    read does there. ``certain``: it reads it whenever the hardware runs (False: only if the
+    hardware exports its interfaces ros2_control's default way)."""
+
+    who: str
+    parse: object  # (configuration, text) -> float or None
+    consequence: str
+    certain: bool
+
+    __slots__ = ("who", "parse", "consequence", "certain")
+
+    def __init__(self, who: str, parse: object, consequence: str, certain: bool = True) -> None:
+        self.who = who
+        self.parse = parse
+        self.consequence = consequence
+        self.certain = certain
+
+
+def interface_params(interface) -> dict:
+    """Name -> the ``<param>`` of a ``<command_interface>`` or ``<state_interface>`` that
+    ros2_control's component parser keeps: its name stripped, the last of a name (they are
+    assigned in document order into a map)."""
+    return {name.strip(): param for param in interface.findall("param")
+            if (name := param.get("name")) is not None}
+
+
+def param_readers(block, joint, interface, name: str) -> dict[str, list[ParamReader]]:
+    """Configuration -> the readers of ``<param name=NAME>`` (min, max, initial_value) of
+    ``interface`` of ``joint`` of ``<ros2_control>`` ``block`` there, for each configuration
+    its hardware runs in (:data:`HARDWARE_CONFIGURATIONS`). Empty for an interface of
+    another data type than double: its initial_value has a parser of its own, not modelled."""
+    if (interface.get("data_type") or "double").strip() != "double":
+        return {}
+    plugin = (block.findtext("hardware/plugin") or "").strip()
+    kind, tag = interface.get("name"), interface.tag
+    found = {configuration: [] for configuration in HARDWARE_CONFIGURATIONS.get(plugin, CONFIGURATIONS)}
+    for configuration, readers in found.items():
+        later = configuration != HUMBLE
+        if name in ("min", "max"):
+            if later and tag == "command_interface" and kind in LIMITED and (
+                    kind in ("acceleration", "jerk") or _limits_enabled(joint, interface)):
+                readers.append(ParamReader(
+                    "ros2_control (4.10.0 and later: Jazzy, Kilted, Rolling)", ros2_control_double,
+                    f"prints 'Error parsing the limits for the interface: {kind}' and skips its "
+                    "min and max (the URDF's <limit> still holds)"))
+        elif name == "initial_value":
+            if plugin in MOCK and (later or tag == "state_interface"):
+                readers.append(ParamReader(
+                    f"{plugin}", ros2_control_double,
+                    "throws 'Invalid initial value' and imports none of the hardware's interfaces"
+                    if later else "throws 'Failed converting string to real number' as the "
+                    "hardware initializes: the controller manager stops"))
+            elif plugin in GAZEBO:
+                if tag == "state_interface" and kind in GAZEBO_STATES:
+                    readers.append(ParamReader(
+                        plugin, humble_gazebo_double, "throws 'Failed converting initial_value "
+                        "string': Gazebo starts no controllers"))
+            elif later:
+                readers.append(ParamReader(
+                    "ros2_control (4.31.0 and later: Jazzy, Kilted, Rolling)", ros2_control_double,
+                    "throws 'Invalid initial value' and imports none of the hardware's interfaces",
+                    certain=False))
+    return found
+
+
+def _limits_enabled(joint, interface) -> bool:
+    """Whether neither ``<limits enable="false"/>`` of the joint nor of the interface turns
+    ros2_control's limits of the interface off (component_parser.cpp)."""
+    return all((element.get("enable") or "").strip().lower() != "false"
+               for element in (joint.find("limits"), interface.find("limits")) if element is not None)
 
 
 def control_plugin(robot):

@@ -5,6 +5,7 @@ from __future__ import annotations
 import functools
 import math
 import re
+import sys
 from collections import namedtuple
 
 from urdftool.description.xml import first_child
@@ -20,6 +21,7 @@ _NON_FINITE = re.compile(r"[+-]?(?:inf|infinity|nan)", re.IGNORECASE)
 # or re's \s, which split at a NO-BREAK SPACE, an EM SPACE, NEL and \x1c-\x1f too: a part
 # "1\xa00" is one component urdfdom cannot parse, not two numbers.
 _SPACE = " \t\n\r\f\v"
+SPACE = _SPACE  # (for readers of other grammars: ros2_control strips these)
 _SPACES = re.compile(f"[{_SPACE}]+")
 # A text whose parts are all _DECIMAL, matched at once: each part is then to_float's float(part).
 _DECIMALS = re.compile(rf"[{_SPACE}]*(?:{_DECIMAL.pattern})(?:[{_SPACE}]+(?:{_DECIMAL.pattern}))*[{_SPACE}]*")
@@ -198,3 +200,93 @@ def pose_of(xyz: str = "0 0 0", rpy: str = "0 0 0") -> tuple[tuple[float, float,
 
 _ZEROS = (0.0, 0.0, 0.0)
 _NO_ORIGIN = Origin()
+
+
+# The number parsers of ros2_control and its Gazebo plugins, for the values of a <param> of a
+# <ros2_control> interface (min, max, initial_value). ros2_control's is hardware_interface::stod
+# (hardware_interface/src/lexical_casts.cpp): built as C++17 (and on macOS) an istringstream in
+# the classic locale that must read the whole text, built as C++20 (ros2_control_cmake 0.4.0 and
+# later set the standard) std::from_chars after one leading '+', a finite result either way.
+# Humble's gazebo_ros2_control and ign_ros2_control read initial_value with std::stod (C's
+# strtod): a number at the start of the text, whatever follows it. Each returns the value, or
+# None where the parser refuses the text (checked against the C++ of both builds and of
+# std::stod compiled with g++ 12: tests/description/test_values.py's table).
+_UNSIGNED = r"(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+_FROM_CHARS = re.compile(rf"-?({_UNSIGNED})")
+_STRTOD = re.compile(rf"[{_SPACE}]*([+-]?)(?:(inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)|"
+                     r"(0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?[0-9]+)?)|"
+                     rf"({_UNSIGNED}))", re.IGNORECASE)
+
+
+def stream_double(text: str) -> float | None:
+    """``text`` as ``std::istringstream(text) >> double`` in the classic locale reads it when the
+    stream must end at its end (white space before the number skipped, none after it taken),
+    and the value is finite: ``' 1'`` is 1, ``'1 '``, ``'inf'``, ``'0x10'`` and ``'1e400'`` are
+    not read; a value below the smallest double reads as 0."""
+    body = text.lstrip(_SPACE)
+    if not _DECIMAL.fullmatch(body):
+        return None
+    value = float(body)
+    return value if math.isfinite(value) else None
+
+
+def from_chars_double(text: str) -> float | None:
+    """``text`` as ros2_control's C++20 build reads it: ``std::from_chars`` over the whole text
+    after one leading ``+`` (so ``'+-1'`` is -1), no white space, a finite value; a text of
+    nonzero digits whose value rounds to 0 (``'1e-400'``) is out of range, refused."""
+    body = text[1:] if text[:1] == "+" else text
+    match = _FROM_CHARS.fullmatch(body)
+    if match is None:
+        return None
+    value = float(body)
+    if not math.isfinite(value) or (value == 0 and _nonzero_digits(match.group(1))):
+        return None
+    return value
+
+
+def strtod_double(text: str) -> float | None:
+    """``text`` as ``std::stod`` reads it: white space skipped, then the longest number at the
+    start (decimal, hexadecimal, ``inf``, ``nan``), anything after it ignored (``'1.5rad'`` is
+    1.5); None when no number starts it (``invalid_argument``) or its value is out of range,
+    above the largest double or below the smallest normal one (``out_of_range``: strtod's
+    ERANGE)."""
+    match = _STRTOD.match(text)
+    if match is None:
+        return None
+    sign, special, hexadecimal, decimal = match.groups()
+    if special:
+        return float(sign + ("nan" if special.lower().startswith("nan") else "inf"))
+    try:
+        value = float.fromhex(sign + hexadecimal) if hexadecimal else float(sign + decimal)
+    except OverflowError:
+        return None
+    if not math.isfinite(value) or (abs(value) < sys.float_info.min and
+                                    not _exactly(value, hexadecimal or decimal)):
+        return None
+    return value
+
+
+def _nonzero_digits(number: str, exponent: str = "[eE]") -> bool:
+    """Whether the digits of ``number`` before its ``exponent`` hold one that is not 0."""
+    return any(c not in "0." for c in re.split(exponent, number, maxsplit=1)[0])
+
+
+def _exactly(value: float, number: str) -> bool:
+    """Whether ``value`` is the exact value of the unsigned decimal or hexadecimal ``number``
+    (strtod's ERANGE below the smallest normal double is for an inexact result: ``0x1p-1074``
+    is exact, ``4.9e-324`` is not)."""
+    from fractions import Fraction  # (only for a value that small)
+
+    if value == 0:  # (before any Fraction: '1e-999999999' would be 10**999999999 to it)
+        hexadecimal = number[:2].lower() == "0x"
+        return not (_nonzero_digits(number[2:], "[pP]") if hexadecimal else _nonzero_digits(number))
+    if number[:2].lower() != "0x":  # (a nonzero value: its exponent is within the doubles')
+        try:
+            return Fraction(abs(value)) == Fraction(number)
+        except ValueError:  # over Python's 4,300 digits of int(): no exact subnormal
+            return False
+    mantissa, _, exponent = number[2:].lower().partition("p")
+    whole, _, fraction = mantissa.partition(".")
+    digits = (whole + fraction) or "0"
+    return Fraction(abs(value)) == Fraction(int(digits, 16), 16 ** len(fraction)) * \
+        Fraction(2) ** int(exponent or "0")

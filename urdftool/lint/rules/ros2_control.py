@@ -1,10 +1,15 @@
-"""U517-U519: ``<ros2_control>`` interfaces and the simulator plugin that loads the hardware."""
+"""U517-U520: ``<ros2_control>`` interfaces, their numbers, and the simulator plugin that loads the
+hardware."""
 
 from __future__ import annotations
 
 from urdftool.description import gazebo_plugins as vocabulary
-from urdftool.description.actuation import gazebo_plugins, ros2_control_joints
-from urdftool.lint.catalogue import Severity, rule
+from urdftool.description.actuation import (CONFIGURATIONS, LATER, gazebo_plugins,
+                                            interface_params, param_readers, ros2_control_double,
+                                            ros2_control_joints)
+from urdftool.description.values import SPACE, strtod_double
+from urdftool.errors import BARE_EXPRESSION, bare_substitution, shown_word
+from urdftool.lint.catalogue import Conditional, Severity, rule
 
 
 @rule("U517", "ros2-control-no-state-interface", Severity.WARNING)
@@ -120,3 +125,100 @@ def ros2_control_no_simulator_plugin(robot):
                         f"{' or '.join(loaded_by[name])} plugin, and the robot has no such "
                         "<gazebo><plugin>: its hardware and "
                         "controllers are never loaded in simulation")
+
+
+READ_PARAMS = ("min", "max", "initial_value")
+
+
+@rule("U520", "ros2-control-param-not-a-number", Severity.ERROR)
+def ros2_control_param_not_a_number(robot):
+    """A ros2_control interface's ``min``, ``max`` or ``initial_value`` is not a number its readers parse.
+
+    ros2_control parses these with its own hardware_interface::stod: one finite decimal number
+    and nothing else (no ``inf``, ``nan``, hexadecimal, unit or comment). Jazzy and later strip
+    white space around the text first; Humble reads it as written, white space after the number
+    refused. A ``min`` or ``max`` of a position,
+    velocity, effort, acceleration or jerk command interface it cannot parse makes ros2_control
+    (4.10.0 and later: Jazzy, Kilted, Rolling) print "Error parsing the limits ... Skipping
+    it" and drop both bounds of the interface, the URDF's ``<limit>`` holding alone; an
+    ``initial_value`` throws as the hardware starts: mock_components' GenericSystem (a state
+    interface's; a command interface's too from Jazzy) and the Gazebo hardware (a position,
+    velocity or effort state interface's: Gazebo then starts no controllers; Humble's Gazebo
+    Classic and Ignition plugins read it with std::stod, which takes ``1.5rad`` as 1.5), and
+    from Jazzy any hardware that exports its interfaces ros2_control's default way.
+
+    An error when every configuration the hardware runs in refuses the value (the hardware
+    plugin's: fake_components and Gazebo Classic end with Humble, gz_ros2_control's
+    GazeboSimSystem starts with Jazzy); a warning naming the configurations when only some
+    read it (Humble reads no ``min``/``max``; a vendor's hardware may not read
+    ``initial_value``); a note when none reads it. Interfaces of another ``data_type`` than
+    double are not judged; of ``<param>``s of one name, the last is, as ros2_control keeps it.
+
+    Bad: ``<param name="min">{-2*pi}</param>`` (xacro leaves ``{...}`` without ``$`` as written)
+    Good: ``<param name="min">${-2*pi}</param>``
+    """
+    for block, joint in ros2_control_joints(robot):
+        for interface in (*joint.findall("command_interface"), *joint.findall("state_interface")):
+            params = interface_params(interface)
+            for name in READ_PARAMS:
+                param = params.get(name)
+                text = param.text if param is not None else None
+                if text and text.strip(SPACE):  # (an empty one is unset, to ros2_control too)
+                    message = _refused(block, joint, interface, name, text)
+                    if message is not None:
+                        yield param, message
+
+
+def _refused(block, joint, interface, name: str, text: str):
+    """U520's message for ``<param name=NAME>TEXT`` of ``interface``, or None when every
+    configuration that reads it reads a number."""
+    readers = param_readers(block, joint, interface, name)
+    if not readers:  # (another data type than double: not judged)
+        return None
+    refusing: dict = {}  # (who, consequence, certain) -> configurations where it refuses
+    read_as: dict = {}  # configuration -> the value its readers read
+    for configuration, ones in readers.items():
+        for reader in ones:
+            value = reader.parse(configuration, text)
+            if value is None:
+                refusing.setdefault((reader.who, reader.consequence, reader.certain), []).append(configuration)
+            else:
+                read_as.setdefault(configuration, value)
+    junk = all(ros2_control_double(c, text) is None for c in CONFIGURATIONS) and strtod_double(text) is None
+    said = (f"ros2_control joint '{joint.get('name')}' {interface.tag} '{interface.get('name')}': "
+            f"{name} '{shown_word(ascii(text)[1:-1] if not text.isprintable() else text)}' is not a number")
+    hint = bare_substitution(text, BARE_EXPRESSION)
+    hint = f"; {hint}" if hint else ""
+    if not refusing:
+        if not junk or read_as:
+            return None
+        plugin = (block.findtext("hardware/plugin") or "").strip()
+        return Conditional(f"{said}, though nothing reads it where hardware '{plugin}' runs "
+                           f"({_where(readers)}); a driver or a later ROS reading it would refuse it{hint}",
+                           Severity.INFO)
+    whom = "; ".join(f"{who}{'' if set(where) == _reading(readers, who) else f' ({_where(where)})'} "
+                     f"{'' if certain else 'if the hardware exports its interfaces from the URDF (the default), '}"
+                     f"{consequence}" for (who, consequence, certain), where in refusing.items())
+    certain = all(any(c in where for (_, _, sure), where in refusing.items() if sure) for c in readers)
+    if certain:
+        return f"{said}: {whom}{hint}"
+    rest = [f"{_where(c for c, v in read_as.items() if v == value)} read it as {value:g}"
+            for value in sorted(set(read_as.values()))]
+    unread = [c for c, ones in readers.items() if not ones]
+    if unread:
+        rest.append(f"nothing reads it in {_where(unread)}")
+    tail = f" ({'; '.join(rest)})" if rest else ""
+    return Conditional(f"{said}: {whom}{tail}{hint}")
+
+
+def _reading(readers: dict, who: str) -> set:
+    """The configurations in which the reader ``who`` reads the param."""
+    return {c for c, ones in readers.items() if any(r.who == who for r in ones)}
+
+
+def _where(configurations) -> str:
+    """Configurations as a message names them: 'Jazzy and later' for both its builds."""
+    chosen = list(configurations)
+    if set(LATER) <= set(chosen):
+        chosen = [c for c in chosen if c not in LATER] + ["Jazzy and later"]
+    return " and ".join(chosen) or "none"

@@ -19,9 +19,10 @@ from urdftool.description.runtime import (STATE_PUBLISHERS, built_as_checked, bu
                                          runtime)
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
-                                            exported_interface, interface_kind, is_ros2_form,
-                                            moving_joints, published_by_gazebo, ros2_control_joints,
-                                            transmission_joints, transmissions)
+                                            exported_interface, interface_kind, interface_params,
+                                            is_ros2_form, moving_joints, published_by_gazebo,
+                                            read_bound, ros2_control_joints, transmission_joints,
+                                            transmissions)
 from urdftool.errors import available, close_names, renamed
 from urdftool.description.values import parse_numbers
 from urdftool.description.xacro_text import dropped_under
@@ -587,12 +588,10 @@ def ros2_control_limits(robot):
         limit = target.find("limit")
         for interface in joint.findall("command_interface"):
             kind = interface.get("name")
-            bounds = {p.get("name"): p for p in interface.findall("param") if p.get("name") in ("min", "max")}
-            values = {}
-            for name, element in bounds.items():
-                numbers, problem = parse_numbers(element.text, 1)
-                if not problem:
-                    values[name] = numbers[0]
+            params = interface_params(interface)  # (a bound ros2_control cannot read: U520)
+            bounds = {name: params[name] for name in ("min", "max") if name in params}
+            values = {name: value for name, element in bounds.items()
+                      if (value := read_bound(element.text)) is not None}
             if "min" in values and "max" in values and values["min"] > values["max"]:
                 yield bounds["min"], (f"ros2_control joint '{joint.get('name')}' {kind}: min "
                                       f"{values['min']:g} is above max {values['max']:g}; swap them")
