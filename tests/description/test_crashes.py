@@ -87,3 +87,30 @@ def test_cli_json_locates_the_crash_at_the_launch_file(run_cli, repository, cras
     assert result.exit_code == 1, result.output
     found = [f for f in json.loads(result.output)["diagnostics"] if f["code"] == "U900"]
     assert [f["file"].rsplit("/", 1)[-1] for f in found] == [name]
+
+
+@pytest.mark.parametrize("module, reader", [
+    ("urdftool.description.packages:_manifest_of", "the Python launch reader"),
+    ("urdftool.lint.settings:for_file", "finding the robots to check")])
+def test_a_crash_finding_targets_is_u900_at_the_path_and_the_others_are_checked(
+        repository, monkeypatch, module, reader):
+    """package.xml's reader, the settings' reader: whatever finding targets reads."""
+    import importlib
+
+    name, attribute = module.split(":")
+    launch = str(repository / "launch" / "x.launch.py")
+    original = getattr(importlib.import_module(name), attribute)
+
+    def crashing(path, *rest):  # (the settings' on the launch file's question only)
+        if str(path) == launch or attribute == "_manifest_of":
+            raise RuntimeError("boom")
+        return original(path, *rest)
+
+    monkeypatch.setattr(importlib.import_module(name), attribute, crashing)
+    robot = str(repository / "urdf" / "b.urdf")
+    run = check_paths([launch, robot], jobs=1, timeout=0)
+    assert any(r.path == robot for r in run.results)
+    crashes = _crashes(run)
+    assert any(file == launch and message.startswith(f"{reader} crashed: RuntimeError: boom")
+               for file, message in crashes), crashes
+    assert run.exit_code == 1

@@ -31,11 +31,13 @@ class Crash(Frozen):
 
 def guarded(reader: str, path, read, fallback=None):
     """``read()``, or ``fallback`` when it raises (a MemoryError is raised again: the memory
-    budget's to stop; the drainer raises again what else is its doing), the crash kept for
+    budget's to stop, an UrdftoolError is raised on purpose; the drainer raises again what else is its doing), the crash kept for
     :func:`drained`."""
+    from urdftool.errors import UrdftoolError
+
     try:
         return read()
-    except MemoryError:
+    except (MemoryError, UrdftoolError):  # (an error raised on purpose is no crash)
         raise
     except Exception as error:  # noqa: BLE001 - said as urdftool's internal error
         _CRASHED.append(Crash(reader, str(path), error))

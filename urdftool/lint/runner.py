@@ -17,6 +17,7 @@ import sys
 from collections.abc import Iterable, Mapping
 
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
+from urdftool.description.crashes import guarded
 from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Finding
 from urdftool.description.inputs import held
@@ -255,11 +256,15 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
             raise TargetError(f"nothing checked: {'; '.join(targets.unchecked)}")
         by_path, errors = {}, []
         for path in targets.files:  # broken settings stop the files they apply to, no others
-            try:
-                by_path[path] = for_file(request.stdin_filename if path == "-" and
-                                         request.stdin_filename else path, request)
+            try:  # (its settings reader's crash: U900 at the file, not checked)
+                plan = guarded("the settings reader", path, lambda: for_file(
+                    request.stdin_filename if path == "-" and request.stdin_filename else path,
+                    request))
             except SettingsError as error:
                 errors.append(str(error))
+            else:
+                if plan is not None:
+                    by_path[path] = plan
     crashed = _discovery_crashes()
     errors = list(dict.fromkeys(errors))
     if errors and not by_path:
