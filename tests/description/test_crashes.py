@@ -114,3 +114,16 @@ def test_a_crash_finding_targets_is_u900_at_the_path_and_the_others_are_checked(
     assert any(file == launch and message.startswith(f"{reader} crashed: RuntimeError: boom")
                for file, message in crashes), crashes
     assert run.exit_code == 1
+
+
+def test_check_file_as_the_server_asks_says_the_crash_once_at_the_launch_file(repository,
+                                                                              crashing):
+    """The language server and the API check one file (``check_file``): the rules that read
+    the launch files go on without it, the crash said once where it was."""
+    from urdftool.lint.runner import check_file
+
+    name, reader = crashing
+    result = check_file(str(repository / "urdf" / "a.urdf"))
+    crashes = [(f.location.file, f.message) for f in result.findings if f.code == "U900"]
+    assert len(crashes) == 1 and crashes[0][0].endswith(name), crashes
+    assert crashes[0][1].startswith(f"{reader} crashed")
