@@ -44,6 +44,7 @@ from urdftool.description.launch import (LAUNCH_TEST_ENTRY, MAX_LAUNCH_SIZE, MAX
                                          is_launch_test, may_be_launch_test, read_launch_text,
                                          was_read)
 from urdftool.description.launch_python import Modules, Room, read_python_launch
+from urdftool.description.crashes import guarded
 from urdftool.description.packages import SKIP_DIRS, containment_root, installed, \
     packages_below
 from urdftool.description.run_memo import per_run
@@ -710,6 +711,13 @@ def read_launch(path: Path, root: Path | None = None, only_test: bool = False) -
 
 @per_run
 def _read_launch(path: Path, root: Path | None, only_test: bool) -> LaunchFile | None:
+    # a crash of the reader is urdftool's (an internal error at the launch file), not the file's: the file
+    # is then as if not read, and whatever asked (finding targets, a rule) goes on
+    reader = "the Python launch reader" if path.name.endswith(".py") else "the launch reader"
+    return guarded(reader, path, lambda: _read_launch_file(path, root, only_test))
+
+
+def _read_launch_file(path: Path, root: Path | None, only_test: bool) -> LaunchFile | None:
     room = reading_room(root) if root is not None else None
     modules = repository_modules(root) if root is not None else None
     read = read_launch_text(path)

@@ -295,7 +295,7 @@ def _moveit2(file, holder) -> tuple[list[ControllerEntry], list]:
     manager = holder["moveit_simple_controller_manager"]
     where = holder.lines["moveit_simple_controller_manager"]
     names = manager.get("controller_names") if isinstance(manager, YamlMap) else None
-    if not isinstance(names, YamlList):  # (a list's lines are a list: its .get was U900)
+    if not isinstance(names, YamlList):  # (a list's lines are a list: its .get was a crash)
         return [], [(manager.lines.get("controller_names", where) if isinstance(manager, YamlMap)
                      else where, "moveit_simple_controller_manager needs a 'controller_names:' "
                      "list")]

@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from urdftool.lint.pool import Stop
 
 __all__ = ["CheckOptions", "FileResult", "Selection", "check_robot", "load_and_check",
-           "stop_finding"]
+           "reader_crashes", "stop_finding"]
 
 # What the loader's errors (LoadError.kind) and notes (LoadNote.kind) are reported as. The loader
 # knows no rule code and names no option: the hints on what to pass are added here.
@@ -121,6 +121,20 @@ def _crash(what: str, error: BaseException, location: Location) -> Finding:
     where = f" [{Path(frame.filename).name}:{frame.lineno}]" if frame else ""
     return CATALOGUE.get("U900").finding(
         f"{what} crashed: {described(error)}{where}", location)
+
+
+def reader_crashes() -> list[Finding]:
+    """U900 for each crash of a reader of the user's files outside a rule since the last call
+    (:func:`urdftool.description.crashes.drained`: a launch file read while finding targets or
+    for a rule), at the file it was reading and naming the reader; one the memory budget did
+    is raised again (the pool stops it: U018)."""
+    from urdftool.description.crashes import drained
+
+    found = []
+    for crash in drained():
+        _raise_if_out_of_memory(crash.error)
+        found.append(_crash(crash.reader, crash.error, Location(display_path(crash.path))))
+    return found
 
 
 def load_error_message(error: LoadError) -> str:
@@ -280,6 +294,9 @@ def _recorded(path: str, options: CheckOptions, data: bytes | None) -> FileResul
 
     with recording() as record:
         result = _load_and_check(path, options, data)
+    crashed = reader_crashes()  # (loading or its rules read on as if the file said nothing)
+    if crashed:
+        result.findings = distinct_sorted(result.findings + crashed)
     result.record = record
     return result
 

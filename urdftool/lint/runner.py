@@ -17,6 +17,7 @@ import sys
 from collections.abc import Iterable, Mapping
 
 from urdftool.budget import DEFAULT_TIMEOUT, Budget
+from urdftool.description.crashes import guarded
 from urdftool.description.run_memo import one_run
 from urdftool.diagnostics import Finding
 from urdftool.description.inputs import held
@@ -255,11 +256,16 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
             raise TargetError(f"nothing checked: {'; '.join(targets.unchecked)}")
         by_path, errors = {}, []
         for path in targets.files:  # broken settings stop the files they apply to, no others
-            try:
-                by_path[path] = for_file(request.stdin_filename if path == "-" and
-                                         request.stdin_filename else path, request)
+            try:  # (its settings reader's crash: U900 at the file, not checked)
+                plan = guarded("the settings reader", path, lambda: for_file(
+                    request.stdin_filename if path == "-" and request.stdin_filename else path,
+                    request))
             except SettingsError as error:
                 errors.append(str(error))
+            else:
+                if plan is not None:
+                    by_path[path] = plan
+    crashed = _discovery_crashes()
     errors = list(dict.fromkeys(errors))
     if errors and not by_path:
         raise SettingsError(errors[0])
@@ -280,14 +286,26 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
             results[index] = result
     unread = dict.fromkeys(why for result in results for why in result.notes)  # (said once; a
     # run with notes is never kept whole: said again on every run)
+    results += crashed  # (after the pools: a file checked keeps its place and strictness)
     run = Run(results, targets.skipped, [*targets.notes, *unread], [plan.strict for plan in plans],
               errors=errors, unbuilt=targets.unbuilt)
-    if cache is not None and not errors:
+    if cache is not None and not errors and not crashed:  # (a crash is worth trying again)
         run.depends = cache.put_run(paths, request, run, lambda path: by_path[path].options,
                                     surroundings)
     if cache is not None and cache.unkept():  # said once a run; the check went on
         run.notes.append(cache.unkept())
     return run
+
+
+def _discovery_crashes() -> list[FileResult]:
+    """The crashes of readers while finding targets (a launch file read to know the robots it
+    builds), each a result of its own at the file being read: U900, as a rule's crash."""
+    from urdftool.lint.engine import reader_crashes
+
+    by_file: dict[str, list[Finding]] = {}
+    for finding in reader_crashes():
+        by_file.setdefault(finding.location.file, []).append(finding)
+    return [FileResult(path, found) for path, found in by_file.items()]
 
 
 def check_file(path, *, data: bytes | str | None = None, **options) -> FileResult:

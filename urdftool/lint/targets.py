@@ -15,6 +15,7 @@ from fnmatch import fnmatchcase as fnmatch
 from pathlib import Path
 
 from urdftool.diagnostics import display_path
+from urdftool.description.crashes import guarded
 from urdftool.description.companions import COMPANION_SUFFIXES, may_use, users_below
 from urdftool.description.launch import LAUNCH_SUFFIXES
 from urdftool.description.files import DEFAULT_MAX_FILE_SIZE, kind_of, listable, unreachable, \
@@ -850,13 +851,13 @@ def expand(paths: list[str], request) -> Targets:
     includers = {}  # (project root, size limit) -> its include graph, built once
     robots = {}  # (project root, size limit) -> its top-level robots, found once
     files, skipped, notes, unchecked, unbuilt = [], {}, [], [], []
-    for path in map(os.fspath, paths):
+    def one(path: str) -> None:
         if path != "-" and not kind_of(path, follow=False):
             raise TargetError(f"path '{path}' {unreachable(path)}")
         kind = kind_of(path) if path != "-" else ""
         if kind not in ("file", "folder"):
             files.append(path)
-            continue
+            return
         limit = options_for(path).max_file_size
         if kind == "file" and path.endswith(COMPANION_SUFFIXES):
             root = users_below(Path(path))
@@ -869,7 +870,7 @@ def expand(paths: list[str], request) -> Targets:
                              f"checking {'that' if len(users) == 1 else 'those'}")
             else:  # any YAML a hook passes (launch, navigation, CI settings): said with -v only
                 skipped[path] = f"no robot below {root} is checked with it: nothing to check"
-            continue
+            return
         if kind == "file" and path.endswith(LAUNCH_SUFFIXES):
             # a launch file is no robot: the robots it builds are checked, with it
             from urdftool.description.runtime import built_by, why_builds_nothing
@@ -883,7 +884,7 @@ def expand(paths: list[str], request) -> Targets:
             else:
                 skipped[path] = f"a launch file that {why_builds_nothing(path)}: nothing to check"
                 unbuilt.append(path)
-            continue
+            return
         if kind == "file":
             root = project_root(Path(path))
 
@@ -898,7 +899,7 @@ def expand(paths: list[str], request) -> Targets:
                 notes.append(f"{path}: {reason}")
                 if not targets and reason.startswith(PART):
                     unchecked.append(f"{path}: {reason}")
-            continue
+            return
         unlisted: list[Path] = []
         found = robot_files(Path(path), unlisted)
         notes.extend(f"folder '{folder}' cannot be read: its files are not checked"
@@ -912,6 +913,8 @@ def expand(paths: list[str], request) -> Targets:
             first, why = next(iter(skipped_here.items()))
             more = f" (and {len(found) - 1} more)" if len(found) > 1 else ""
             unchecked.append(f"{path}: no robot of its own in it: {first}: {why}{more}")
+    for path in map(os.fspath, paths):  # a reader's crash here is urdftool's: U900 at the path
+        guarded("finding the robots to check", path, lambda: one(path))  # (the others go on)
     unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
     for file in files:
         unique.setdefault(file if file == "-" else _checked_as(Path(file)), file)

@@ -4,9 +4,11 @@ here, with the other families, so that the catalogue is complete without importi
 from urdftool.lint.catalogue import Severity, declare
 
 U900 = declare("U900", "internal-error", Severity.ERROR, """
-    A rule or the loader crashed on this file: a bug in urdftool, not in the robot.
+    A rule, the loader or a reader crashed on this file: a bug in urdftool, not in the robot.
 
-    The run goes on with the other rules and files. Please report it with the file attached.
+    A reader is what reads a file besides the robot's (a launch file read while finding the
+    robots to check, or for a rule, the settings). The run goes on with the other rules and files; a file whose reader crashed is taken as if
+    it said nothing. Please report it with the file attached.
     """)
 
 U901 = declare("U901", "unused-suppression", Severity.WARNING, """
