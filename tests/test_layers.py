@@ -29,9 +29,13 @@ LAYERS = next(c for c in CONTRACTS["contracts"] if c["id"] == "layers")["layers"
 
 
 def _lint_imports(root: Path) -> subprocess.CompletedProcess:
-    """``lint-imports`` on the package under ``root`` with the contracts of its pyproject.toml."""
+    """``lint-imports`` on the package under ``root`` with the contracts of its pyproject.toml,
+    every dependency of a broken acyclic contract listed (import-linter lists the first five by
+    name: which those are depends on the package's other imports, not on the one broken)."""
     return subprocess.run([sys.executable, "-c", "import sys; from importlinter.cli import "
-                           "lint_imports_command; sys.exit(lint_imports_command())",
+                           "lint_imports_command; from importlinter.contracts import "
+                           "acyclic_siblings; acyclic_siblings.MAX_DEPENDENCIES_TO_RENDER = "
+                           "10 ** 6; sys.exit(lint_imports_command())",
                            "--no-cache"], cwd=root, env={"PYTHONPATH": str(root)},
                           capture_output=True, text=True)
 

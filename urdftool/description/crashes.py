@@ -44,6 +44,12 @@ def guarded(reader: str, path, read, fallback=None):
         return fallback
 
 
+def any_kept() -> bool:
+    """Whether a crash was kept since the last :func:`drained` (asked before importing what
+    reports it: a run served whole from the result cache imports no rule)."""
+    return bool(_CRASHED)
+
+
 def drained() -> list[Crash]:
     """The crashes kept since the last call, in order; the record is emptied."""
     found = list(_CRASHED)

@@ -277,6 +277,8 @@ def _exactly(value: float, number: str) -> bool:
     is exact, ``4.9e-324`` is not)."""
     from fractions import Fraction  # (only for a value that small)
 
+    from urdftool.numbers import power
+
     if value == 0:  # (before any Fraction: '1e-999999999' would be 10**999999999 to it)
         hexadecimal = number[:2].lower() == "0x"
         return not (_nonzero_digits(number[2:], "[pP]") if hexadecimal else _nonzero_digits(number))
@@ -289,4 +291,4 @@ def _exactly(value: float, number: str) -> bool:
     whole, _, fraction = mantissa.partition(".")
     digits = (whole + fraction) or "0"
     return Fraction(abs(value)) == Fraction(int(digits, 16), 16 ** len(fraction)) * \
-        Fraction(2) ** int(exponent or "0")
+        power(Fraction(2), int(exponent or "0"))

@@ -299,7 +299,12 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
 
 def _discovery_crashes() -> list[FileResult]:
     """The crashes of readers while finding targets (a launch file read to know the robots it
-    builds), each a result of its own at the file being read: U900, as a rule's crash."""
+    builds), each a result of its own at the file being read: U900, as a rule's crash. The
+    engine (and with it the rules) is imported only when one crashed."""
+    from urdftool.description.crashes import any_kept
+
+    if not any_kept():
+        return []
     from urdftool.lint.engine import reader_crashes
 
     by_file: dict[str, list[Finding]] = {}
