@@ -152,7 +152,7 @@ def exported_interface(robot, block, name: str) -> str:
     renamed = exports.get(block)
     if renamed is None:
         renamed = exports[block] = PLUGIN_INTERFACES.get(
-            (block.findtext("hardware/plugin") or "").strip(), {})
+            hardware_plugin(block), {})
     return renamed.get(name, name)
 
 
@@ -201,6 +201,13 @@ GAZEBO = ("gazebo_ros2_control/GazeboSystem", "gz_ros2_control/GazeboSimSystem",
 LIMITED = ("position", "velocity", "effort", "acceleration", "jerk")
 GAZEBO_STATES = ("position", "velocity", "effort")  # the state interfaces the Gazebo hardware
 # reads an initial_value of
+
+
+def hardware_plugin(block) -> str:
+    """The class name of a ``<ros2_control>`` block's ``<hardware><plugin>`` as
+    ros2_control's component parser keeps it (its first, its text stripped); '' when it has
+    none."""
+    return (block.findtext("hardware/plugin") or "").strip()
 
 
 def ros2_control_double(configuration: str, text: str) -> float | None:
@@ -258,7 +265,7 @@ def param_readers(block, joint, interface, name: str) -> dict[str, list[ParamRea
     another data type than double: its initial_value has a parser of its own, not modelled."""
     if (interface.get("data_type") or "double").strip() != "double":
         return {}
-    plugin = (block.findtext("hardware/plugin") or "").strip()
+    plugin = hardware_plugin(block)
     kind, tag = interface.get("name"), interface.tag
     found = {configuration: [] for configuration in HARDWARE_CONFIGURATIONS.get(plugin, CONFIGURATIONS)}
     for configuration, readers in found.items():

@@ -494,13 +494,14 @@ def _zero_effort(robot, name: str):
 def _effort_hardware(robot, name: str) -> str | None:
     """The hardware plugin of the ``<ros2_control>`` block whose joint ``name`` takes effort
     commands ("no plugin" when it names none), or None when no block commands it by effort."""
-    from urdftool.description.actuation import exported_interface, ros2_control_joints
+    from urdftool.description.actuation import exported_interface, hardware_plugin, \
+        ros2_control_joints
 
     for block, joint in ros2_control_joints(robot):
         if joint.get("name") == name and any(
                 exported_interface(robot, block, c.get("name")) == "effort"
                 for c in joint.findall("command_interface") if c.get("name")):
-            return (block.findtext("hardware/plugin") or "").strip() or "no plugin"
+            return hardware_plugin(block) or "no plugin"
     return None
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from urdftool.description import gazebo_plugins as vocabulary
 from urdftool.description.actuation import (CONFIGURATIONS, LATER, gazebo_plugins,
-                                            interface_params, param_readers, ros2_control_double,
+                                            hardware_plugin, interface_params, param_readers, ros2_control_double,
                                             ros2_control_joints)
 from urdftool.description.values import SPACE, strtod_double
 from urdftool.errors import BARE_EXPRESSION, bare_substitution, shown_word
@@ -192,7 +192,7 @@ def _refused(block, joint, interface, name: str, text: str):
     if not refusing:
         if not junk or read_as:
             return None
-        plugin = (block.findtext("hardware/plugin") or "").strip()
+        plugin = hardware_plugin(block)
         return Conditional(f"{said}, though nothing reads it where hardware '{plugin}' runs "
                            f"({_where(readers)}); a driver or a later ROS reading it would refuse it{hint}",
                            Severity.INFO)

@@ -19,8 +19,9 @@ from urdftool.description.runtime import (STATE_PUBLISHERS, built_as_checked, bu
                                          runtime)
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.actuation import (HARDWARE_INTERFACES, control_plugin, diff_drive_wheels,
-                                            exported_interface, interface_kind, interface_params,
-                                            is_ros2_form, moving_joints, published_by_gazebo,
+                                            exported_interface, hardware_plugin, interface_kind,
+                                            interface_params, is_ros2_form, moving_joints,
+                                            published_by_gazebo,
                                             read_bound, ros2_control_joints, transmission_joints,
                                             transmissions)
 from urdftool.errors import available, close_names, renamed
@@ -197,7 +198,7 @@ def transmission_no_actuator(robot):
                        "naming the motor that drives the joint")
             block = transmission.getparent()
             if block is not None and block.tag == "ros2_control":
-                plugin = (block.findtext("hardware/plugin") or "").strip() or "?"
+                plugin = hardware_plugin(block) or "?"
                 message = Conditional(
                     f"if hardware plugin '{plugin}' loads its transmissions (ros2_control's "
                     "parser accepts this one; configuring it with no actuator fails): " + message)
