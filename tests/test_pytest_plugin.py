@@ -267,11 +267,13 @@ def test_a_crash_while_collecting_is_an_item_of_its_own_at_the_file_read(project
     monkeypatch.setattr(targets, "_top_level_answer", crashing)
     result = project.runpytest_inprocess("--urdftool", "robots", "other", "-p",
                                          "no:cacheprovider", "-p", "no:xdist")
+    result.assert_outcomes(passed=1, failed=2)  # humanoid; broken.urdf, the crash once
     result.stdout.fnmatch_lines_random([
         "FAILED robots/broken.urdf::urdftool - robots/broken.urdf:3: error U204*",
-        "FAILED other*::urdftool - other*: error U900 finding the robots*"])
+        "FAILED other/crash.urdf::urdftool - other/crash.urdf: error U900*"])
     text = result.stdout.str()
-    assert "error U900 finding the robots to check crashed: RuntimeError: boom" in text
+    assert "other/crash.urdf: error U900 finding the robots to check crashed: RuntimeError: " \
+        "boom" in text
     broken = text.split("urdftool check broken.urdf")[1].split("\n_")[0]
     assert "U900" not in broken, text  # (its own findings only)
     assert "robots/humanoid/humanoid.urdf.xacro ." in text
