@@ -243,3 +243,37 @@ def test_the_fixture_fails_with_broken_settings_that_stop_some_files(tmp_path):
 
     with _pytest.raises(SettingsError):  # nothing could be checked
         _check([str(tmp_path / "b")])
+
+
+def test_a_crash_while_collecting_is_an_item_of_its_own_at_the_file_read(project, monkeypatch):
+    """A reader's crash while the plugin finds the robots (U900, urdftool's internal error)
+    was kept until a robot item's check said it: no item said it (the session's check had no
+    item for the file read), or the first robot failed with another file's crash. It is an
+    item of its own at the file being read, failing with the U900 as ``urdftool check`` says
+    it; the robots pass or fail on their own findings."""
+    import importlib
+
+    targets = importlib.import_module("urdftool.lint.targets")
+    answer = targets._top_level_answer
+
+    def crashing(data):
+        if b"crash" in data:
+            raise RuntimeError("boom")
+        return answer(data)
+
+    (project.path / ".git").mkdir()
+    (project.path / "other").mkdir()
+    (project.path / "other" / "crash.urdf").write_text(BROKEN.replace("broken", "crash"))
+    monkeypatch.setattr(targets, "_top_level_answer", crashing)
+    result = project.runpytest_inprocess("--urdftool", "robots", "other", "-p",
+                                         "no:cacheprovider", "-p", "no:xdist")
+    result.assert_outcomes(passed=1, failed=2)  # humanoid; broken.urdf, the crash once
+    result.stdout.fnmatch_lines_random([
+        "FAILED robots/broken.urdf::urdftool - robots/broken.urdf:3: error U204*",
+        "FAILED other/crash.urdf::urdftool - other/crash.urdf: error U900*"])
+    text = result.stdout.str()
+    assert "other/crash.urdf: error U900 finding the robots to check crashed: RuntimeError: " \
+        "boom" in text
+    broken = text.split("urdftool check broken.urdf")[1].split("\n_")[0]
+    assert "U900" not in broken, text  # (its own findings only)
+    assert "robots/humanoid/humanoid.urdf.xacro ." in text

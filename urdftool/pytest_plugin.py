@@ -7,7 +7,9 @@ findings when ``urdftool check`` would exit 1 on it, honouring the settings file
 session's robot items are checked together, at the first one, as ``urdftool check FILE...``
 checks them (one run: repositories, packages, launch files and settings looked up once; the
 files in worker processes, each within the usual time budget); under pytest-xdist, whose
-workers each run a share unknown in advance, each item checks its own file.
+workers each run a share unknown in advance, each item checks its own file. A reader's crash
+while the robots are found (U900, urdftool's internal error) is an item of its own at the file
+it was reading, failing as ``urdftool check`` says it.
 
 For tests of your own, the ``urdftool_check`` fixture checks paths and fails the test with the
 findings; ``urdftool.check_paths`` returns them for any other use. Without ``--urdftool`` the
@@ -112,6 +114,7 @@ def _top_level(config, folder: Path) -> set[Path]:
             cache[("unchecked", folder)] = targets.unchecked
         except Exception:  # noqa: BLE001 - no robots here, or unreadable: nothing to collect
             files = []
+        _keep_crashes(config)
         real = [Path(real_path(file)) for file in files]
         cache[folder] = {file for file in real if file.parent == Path(real_path(folder))}
         cache[("named", folder)] = [Path(file) for file in files
@@ -119,14 +122,45 @@ def _top_level(config, folder: Path) -> set[Path]:
     return cache[folder]
 
 
+def _keep_crashes(config) -> None:
+    """The readers' crashes while finding the robots (:mod:`urdftool.description.crashes`),
+    kept for items of their own (:class:`CrashItem`): left in the record, the first robot
+    item's check said them as its own."""
+    from urdftool.description.crashes import any_kept
+
+    if not any_kept():
+        return
+    from urdftool.lint.runner import discovery_crashes
+
+    kept = config.stash.setdefault(_CRASHES, {})
+    for result in discovery_crashes():
+        findings = kept.setdefault(result.path, [])
+        findings.extend(f for f in result.findings if f not in findings)
+
+
+_CRASHES = pytest.StashKey[dict]()
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(session, config, items):
+    """No robot item: :func:`_nothing_checked`; then an item for each file whose reader crashed
+    while the robots were found (:class:`CrashItem`). Before ``-k`` deselects (tryfirst): the
+    items pytest collected."""
+    if not config.getoption("urdftool"):
+        return
+    if not any(isinstance(i, RobotItem) for i in items):
+        _nothing_checked(config)
+    for path, findings in config.stash.get(_CRASHES, {}).items():
+        file = Path(path).absolute()
+        items.append(CrashItem.from_parent(session, name="urdftool", path=file,
+                                           nodeid=f"{_node_id(session, file)}::urdftool",
+                                           findings=findings))
+
+
+def _nothing_checked(config) -> None:
     """A check that checks nothing is no pass, as ``urdftool check`` says (exit 2): robot
     files were found (a robot whose root link was deleted, parts no robot includes, macro
-    libraries only) and none is a robot of its own, so no item would fail: a usage error.
-    Before ``-k`` deselects (tryfirst): the items pytest collected."""
-    if not config.getoption("urdftool") or any(isinstance(i, RobotItem) for i in items):
-        return
+    libraries only) and none is a robot of its own, so no item would fail: a usage error."""
     cache = config.stash.get(_CACHE, {})
     reasons = sorted({why for key, found in cache.items()
                       if isinstance(key, tuple) and key[0] == "unchecked" for why in found},
@@ -164,11 +198,21 @@ class _FindingsFailure(Exception):
     """``urdftool check`` fails on a robot; the text is its located findings."""
 
 
-class RobotItem(pytest.Item):
+class _FindingsItem(pytest.Item):
+    """An item failing with located findings (:class:`_FindingsFailure`), as ``urdftool check``
+    prints them."""
+
     # Plugins that wrap every test call may read ``funcargs`` (pytest-lsp 1.0 stops the run
     # with "did not yield" on an item without it); a robot takes no fixtures.
     funcargs: dict = {}
 
+    def repr_failure(self, excinfo, style=None):
+        if isinstance(excinfo.value, _FindingsFailure):
+            return str(excinfo.value)
+        return super().repr_failure(excinfo, style)
+
+
+class RobotItem(_FindingsItem):
     def runtest(self):
         from urdftool.errors import REFUSALS
         from urdftool.report.escape import text
@@ -180,15 +224,31 @@ class RobotItem(pytest.Item):
         if run.exit_code:
             raise _FindingsFailure(_text(run))
 
-    def repr_failure(self, excinfo, style=None):
-        if isinstance(excinfo.value, _FindingsFailure):
-            return str(excinfo.value)
-        return super().repr_failure(excinfo, style)
-
     def reportinfo(self):
         from urdftool.report.escape import text
 
         return self.path, None, text(f"urdftool check {self.path.name}")
+
+
+class CrashItem(_FindingsItem):
+    """A reader's crash while the robots were found (U900, urdftool's internal error), at the
+    file it was reading, failing as ``urdftool check`` says it, as an item of its own (the
+    robots' items fail on their own findings only)."""
+
+    def __init__(self, *args, findings, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.findings = findings
+
+    def runtest(self):
+        from urdftool.lint.runner import FileResult, Run
+
+        crash = FileResult(str(self.path), self.findings)
+        raise _FindingsFailure(_text(Run([crash], strict=[False])))
+
+    def reportinfo(self):
+        from urdftool.report.escape import text
+
+        return self.path, None, text(f"urdftool: crashed reading {self.path.name}")
 
 
 _TOGETHER = pytest.StashKey[dict]()

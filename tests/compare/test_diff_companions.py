@@ -109,6 +109,32 @@ def test_a_controller_value_yaml_builds_beyond_json_is_written_exact_in_every_fo
     assert "`arm.arm_controller.set_of` (none) -> (`a`, `b`)" in markdown
 
 
+def test_a_value_json_cannot_hold_is_spelt_as_the_text_report_writes_it(tmp_path):
+    """JSON has no infinity: ``diff -f json`` wrote YAML's ``.inf``, ``-.inf`` and ``.nan`` as
+    null, which is also its spelling of a value that is none (``~``): ``.inf -> ~`` was null
+    -> null. Each is the string the text and Markdown reports write (``inf``, ``-inf``,
+    ``nan``, :func:`urdftool.numbers.number`); none stays null."""
+    import io
+    import json
+
+    from urdftool.report import diff as report
+
+    values = "  a: .inf\n  b: -.inf\n  c: .nan\n  d: 1.0\n"
+    result = diff(side(tmp_path / "old", controllers=CONTROLLERS + values),
+                  side(tmp_path / "new", controllers=CONTROLLERS + values.replace(
+                      ".inf\n  b", "~\n  b").replace("-.inf", "2.0").replace(".nan", "3.0")
+                      .replace("1.0", "-.inf")))
+    stream = io.StringIO()
+    report.write(result, "json", stream)
+    data = json.loads(stream.getvalue(), parse_constant=lambda name: pytest.fail(name))
+    assert {c["field"]: (c["old"], c["new"]) for c in data["changes"]} == {
+        "arm.a": ("inf", None), "arm.b": ("-inf", 2.0), "arm.c": ("nan", 3.0),
+        "arm.d": (1.0, "-inf")}
+    shown = report.text(result) + report.markdown(result)
+    for old, new in (("inf", "(none)"), ("-inf", "2"), ("nan", "3"), ("1", "-inf")):
+        assert f" {old} -> {new}" in shown
+
+
 def _unreadable(path, kind, outside):
     """Replace the file at ``path`` by something no side can compare: ``kind`` names it."""
     import os

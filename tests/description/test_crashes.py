@@ -127,3 +127,31 @@ def test_check_file_as_the_server_asks_says_the_crash_once_at_the_launch_file(re
     crashes = [(f.location.file, f.message) for f in result.findings if f.code == "U900"]
     assert len(crashes) == 1 and crashes[0][0].endswith(name), crashes
     assert crashes[0][1].startswith(f"{reader} crashed")
+
+
+@pytest.mark.parametrize("named", ["folder", "companion"])
+def test_a_crash_reading_one_file_of_a_folder_is_u900_there_and_its_other_robots_are_checked(
+        repository, monkeypatch, named):
+    """Finding the robots of a folder reads each of its robot files (is it a robot, what does
+    it include): a crash reading one was the folder's (U900 at the folder), and none of its
+    robots was checked. It is one U900 at that file; the others are checked."""
+    import importlib
+
+    targets = importlib.import_module("urdftool.lint.targets")
+    answer = targets._top_level_answer
+
+    def crashing(data):
+        if b'name="b"' in data:
+            raise RuntimeError("boom")
+        return answer(data)
+
+    monkeypatch.setattr(targets, "_top_level_answer", crashing)
+    (repository / "config").mkdir()
+    (repository / "config" / "a_controllers.yaml").write_text(
+        "controller_manager:\n  ros__parameters:\n    update_rate: 100\n")
+    path = repository if named == "folder" else repository / "config" / "a_controllers.yaml"
+    run = check_paths([str(path)], jobs=1, timeout=0)
+    assert any(r.path.endswith("a.urdf") for r in run.results), run.results
+    crashes = _crashes(run)
+    assert len(crashes) == 1 and crashes[0][0].endswith("b.urdf"), crashes
+    assert crashes[0][1].startswith("finding the robots to check crashed: RuntimeError: boom")

@@ -647,3 +647,24 @@ def test_an_also_list_of_long_names_shows_the_first_few_and_how_many():
     [line] = [line for line in _text([FileResult("nao.urdf", short)]).splitlines() if "U407" in line]
     assert line.endswith("also 'Link1', 'Link2', 'Link3', 'Link4', 'Link5', 'Link6', 'Link7', "
                          "'Link8', 'Link9', 'Link10', 'Link11', 'Link12', ... (38 in all)]"), line
+
+
+def test_lines_a_group_is_written_in_are_in_the_file_s_order():
+    """PAROL6's ros2_control macro: each joint's command interface min and max beyond its
+    <limit> (U515), each its own figures, so each its own line; the lines were written group
+    by group (every min, then every max: 49, 71, 105, 50, 89, 106). They are in the order of
+    the file, the first line of a group where it stands."""
+    def bound(line: int, joint: str, name: str, value: float, edge: float) -> Finding:
+        return Finding("U515", "ros2-control-limits", Severity.WARNING,
+                       f"ros2_control joint '{joint}' position {name} is {value:g}, beyond the "
+                       f"URDF <limit> ({edge:g})", Location("parol6.ros2_control.xacro", line))
+
+    findings = [bound(49, "joint_L1", "min", -3.14159, -1.7),
+                bound(50, "joint_L1", "max", 3.14159, 1.7),
+                bound(71, "joint_L2", "min", -0.98, -0.802444),
+                bound(89, "joint_L3", "max", 1.3, 1.29),
+                bound(105, "joint_L4", "min", -3.14159, -2.52944),
+                bound(106, "joint_L4", "max", 3.14159, 1.84911)]
+    text = _text([FileResult("parol6.urdf.xacro", findings)])
+    lines = [int(line.split(":")[1]) for line in text.splitlines() if "U515" in line]
+    assert lines == [49, 50, 71, 89, 105, 106], text

@@ -265,7 +265,7 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
             else:
                 if plan is not None:
                     by_path[path] = plan
-    crashed = _discovery_crashes()
+    crashed = discovery_crashes()
     errors = list(dict.fromkeys(errors))
     if errors and not by_path:
         raise SettingsError(errors[0])
@@ -297,7 +297,7 @@ def _check_paths(paths: list, request: CheckRequest, progress) -> Run:
     return run
 
 
-def _discovery_crashes() -> list[FileResult]:
+def discovery_crashes() -> list[FileResult]:
     """The crashes of readers while finding targets (a launch file read to know the robots it
     builds), each a result of its own at the file being read: U900, as a rule's crash. The
     engine (and with it the rules) is imported only when one crashed."""

@@ -166,20 +166,36 @@ def split_top_level(files: list[Path], resolver_for, max_file_size: int = DEFAUL
     max_file_size: files larger [bytes] are not read; they stay targets (U008 when checked)
     """
     included: dict[Path, Path] = {}
-    summaries = {path: _summary(path, resolver_for, max_file_size) for path in files}
+    summaries = {path: _guarded(path, lambda path=path: _summary(path, resolver_for,
+                                                                 max_file_size))
+                 for path in files}
     for path, summary in summaries.items():
-        for target in summary.includes:
+        for target in summary.includes if summary is not None else ():
             included.setdefault(target, path)
     top, skipped = [], {}
     for path in files:
         key = resolved_path(path)
-        if key in included:
+        if summaries[path] is None:
+            skipped[path] = CRASHED
+        elif key in included:
             skipped[path] = f"included by {included[key]}"
-        elif (reason := _not_a_robot(path, summaries[path], resolver_for, max_file_size)):
+        elif (reason := _guarded(path, lambda path=path: _not_a_robot(
+                path, summaries[path], resolver_for, max_file_size), CRASHED)):
             skipped[path] = reason
         else:
             top.append(path)
     return top, skipped
+
+
+FINDING = "finding the robots to check"  # (the reader a crash while finding targets names)
+CRASHED = "urdftool crashed reading it (U900): not checked"
+
+
+def _guarded(path: Path, read, fallback=None):
+    """``read()`` of one file while finding the robots, or ``fallback`` when it crashes: U900
+    at that file (:func:`urdftool.description.crashes.guarded`), the walk going on with the
+    folder's other files (a crash reading one lost them all)."""
+    return guarded(FINDING, path, read, fallback)
 
 
 def _summary(path: Path, resolver_for, limit: int, data=_UNREAD) -> _Summary:
@@ -767,7 +783,8 @@ def includers_below(root: Path, resolver_for, max_file_size: int = DEFAULT_MAX_F
     read = read or {}
     for path in robot_files(root):
         data = read.get(os.path.abspath(path), _UNREAD)
-        for target in _includes(path, resolver_for, max_file_size, data):
+        for target in _guarded(path, lambda path=path, data=data: _includes(
+                path, resolver_for, max_file_size, data), ()):
             includers.setdefault(target, []).append(path)
     return includers
 
@@ -914,7 +931,7 @@ def expand(paths: list[str], request) -> Targets:
             more = f" (and {len(found) - 1} more)" if len(found) > 1 else ""
             unchecked.append(f"{path}: no robot of its own in it: {first}: {why}{more}")
     for path in map(os.fspath, paths):  # a reader's crash here is urdftool's: U900 at the path
-        guarded("finding the robots to check", path, lambda: one(path))  # (the others go on)
+        guarded(FINDING, path, lambda: one(path))  # (the others go on)
     unique = {}  # the same file named twice, or a robot and a macro it includes: check it once
     for file in files:
         unique.setdefault(file if file == "-" else _checked_as(Path(file)), file)

@@ -254,12 +254,14 @@ def as_json(result) -> dict:
 
 
 def write(result, output_format: str, stream=None) -> None:
-    """``result`` (urdftool.compare.diff.Diff) as text, json or markdown on ``stream``."""
+    """``result`` (urdftool.compare.diff.Diff) as text, json or markdown on ``stream``; a number
+    JSON cannot hold (YAML's ``.inf``) as the text and Markdown write it: ``"inf"``,
+    ``"-inf"``, ``"nan"``."""
     stream = stream or sys.stdout
     if output_format == "json":
         from urdftool.report.json_output import write_json
 
-        write_json(as_json(result), stream)
+        write_json(as_json(result), stream, spelt=True)  # (null: a value that is none)
     elif output_format == "markdown":
         stream.write(_lines(markdown(result)))
     else:

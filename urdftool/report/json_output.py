@@ -9,25 +9,29 @@ import math
 import re
 import sys
 
+from urdftool.numbers import number
+
 WIDTH = 100  # a value whose JSON fits on a line this wide is written on one line
 RECORD = 4000  # an object in a list (a finding, a link's pose) up to this long is one line too
 
 
-def dumps(data, indent: str = "", in_list: bool = False) -> str:
+def dumps(data, indent: str = "", in_list: bool = False, *, spelt: bool = False) -> str:
     """``data`` as indented JSON: a list or object that fits in :data:`WIDTH` columns stays on
     one line, and so does an object in a list up to :data:`RECORD` characters (a record a line);
     a longer one has an item a line. Each line is encoded by json's C encoder
     (``json.dumps(indent=...)`` runs the slower pure-Python one). Always JSON (RFC 8259): a
     float that is infinite or NaN (a declared mass of ``inf``, a pose past what a float holds)
     is written null, which every reader takes (``NaN``/``Infinity`` are no JSON: `inertia -f
-    json` of such a robot was refused by every strict reader). No zero is signed: ``-0.0`` is
+    json` of such a robot was refused by every strict reader); with ``spelt``, the string the
+    text reports write (``"inf"``, ``"-inf"``, ``"nan"``: :func:`urdftool.numbers.number`), for
+    a document where null says a value is none (a file's ``~``: ``diff``). No zero is signed: ``-0.0`` is
     written ``0.0`` (:func:`urdftool.numbers.exact`). ``indent``, ``in_list``: the text of
     ``data`` as a member of a list so indented (:func:`write_json_list`); each cleaning is of
     one value, so a list's members cleaned one by one are the list cleaned whole."""
     try:
         text = _dumps(data, _ENCODE, indent, in_list)
     except ValueError:  # (rare: looked for by the encoder, and only then the data cleaned)
-        data = _finite(data)
+        data = _finite(data, spelt)
         text = _dumps(data, _ENCODE, indent, in_list)
     if _signed_zero(text):  # as numbers.exact writes a float: looked for, then cleaned
         data = _unsigned(data)
@@ -194,10 +198,10 @@ def _least_length(value, cap: int) -> int:
     return 1
 
 
-def write_json(data, stream=None) -> None:
-    """``data`` as :func:`dumps` writes it and a newline on ``stream`` (default: standard output),
-    in one write (``json.dump`` writes token by token)."""
-    (stream or sys.stdout).write(dumps(data) + "\n")
+def write_json(data, stream=None, *, spelt: bool = False) -> None:
+    """``data`` as :func:`dumps` writes it (``spelt`` as there) and a newline on ``stream``
+    (default: standard output), in one write (``json.dump`` writes token by token)."""
+    (stream or sys.stdout).write(dumps(data, spelt=spelt) + "\n")
 
 
 def write_json_list(items, stream=None) -> None:
@@ -253,11 +257,13 @@ def _unsigned(value):
     return value
 
 
-def _finite(value):
+def _finite(value, spelt: bool = False):
+    """``value`` with each float that is infinite or NaN null, or ``spelt`` as text
+    (:func:`dumps`)."""
     if isinstance(value, dict):
-        return {key: _finite(item) for key, item in value.items()}
+        return {key: _finite(item, spelt) for key, item in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_finite(item) for item in value]
+        return [_finite(item, spelt) for item in value]
     if isinstance(value, float) and not math.isfinite(value):
-        return None
+        return number(value) if spelt else None
     return value

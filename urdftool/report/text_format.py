@@ -75,11 +75,8 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
             continue
         out.append([(display_path(result.path), "bold underline")])
         listed: dict = {}  # each long list of names -> where it was written in full
-        for whole, alike in _grouped(shown):
-            for part, named in _apart(whole):
-                for group, message in _foldable(part, alike):
-                    out.extend(_group_lines(group, message, listed,
-                                            named if group is part else None))
+        for group, message, named in _in_file_order(shown):
+            out.extend(_group_lines(group, message, listed, named))
         if not quiet:
             out.append([])
     if quiet:
@@ -94,6 +91,20 @@ def lines(results, quiet: bool = False, notes: Notes = True) -> list[Line]:
         parts += [f"{unseen} of them in notes not shown"] if unseen else []
         out.append([("; ".join(parts), "")])
     return [_escaped(line) for line in out]
+
+
+def _in_file_order(shown: list) -> list[tuple[list, str, list | None]]:
+    """The lines ``shown`` (findings in line order) is written in, each (its findings, the
+    message it says, the names :func:`_apart` read or None), in the order of their first
+    findings: the lines a group is split into (each its own figures, :func:`_foldable`) stand
+    among the others where they are in the file, not one group's after another's (PAROL6's
+    U515: every min, then every max)."""
+    order = {id(finding): index for index, finding in enumerate(shown)}
+    lines = [(group, message, named if group is part else None)
+             for whole, alike in _grouped(shown)
+             for part, named in _apart(whole)
+             for group, message in _foldable(part, alike)]
+    return sorted(lines, key=lambda line: order[id(line[0][0])])
 
 
 def _shown(result, notes: Notes) -> list:
