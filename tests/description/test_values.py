@@ -9,9 +9,10 @@ import pytest
 from lxml import etree
 
 from urdftool.description.load import load
-from urdftool.description.values import (Origin, from_chars_double, number_tuple, origin,
-                                         origin_pose, parse_numbers, stream_double, strtod_double,
-                                         urdfdom_refuses, urdfdom_spelling)
+from urdftool.description.values import (Origin, from_chars_double, limit_bound, limit_range,
+                                         number_tuple, origin, origin_pose, parse_numbers,
+                                         stream_double, strtod_double, urdfdom_refuses,
+                                         urdfdom_spelling)
 from urdftool.kinematics import dh, transforms
 from urdftool.physics import mass, mat3
 
@@ -239,3 +240,18 @@ def test_ros2_control_parsers_read_as_the_cxx_does(text, stream, chars, stod):
     assert same(stream_double(text), stream)
     assert same(from_chars_double(text), chars)
     assert same(strtod_double(text), stod)
+
+
+@pytest.mark.parametrize("kind, limit, expected", [
+    ("revolute", '<limit lower="-1" upper="2"/>', (-1.0, 2.0)),
+    ("prismatic", '<limit upper="0.5"/>', (0.0, 0.5)),  # a bound not written is urdfdom's 0
+    ("revolute", '<limit lower="-inf" upper="1"/>', (-math.inf, 1.0)),  # a number, not finite
+    ("revolute", '<limit lower="a" upper="1"/>', None),
+    ("continuous", '<limit lower="-1" upper="1"/>', None),  # no range limits it
+    ("fixed", '<limit lower="-1" upper="1"/>', None),
+])
+def test_limit_range_is_urdfdoms(kind, limit, expected):
+    element = etree.fromstring(limit)
+    assert limit_range(kind, element) == expected
+    if expected is not None:
+        assert (limit_bound(element, "lower"), limit_bound(element, "upper")) == expected
