@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from urdftool.description.urdf import DEGREES
 from urdftool.errors import DynamicsError
 from urdftool.kinematics.configuration import FLOATING_COORDINATES
 from urdftool.kinematics.model import oversized_data
@@ -381,13 +382,10 @@ def _computed(model: Model, q: np.ndarray, q_values: dict, v_values: dict | None
     return result
 
 
-_VELOCITIES = {"revolute": 1, "continuous": 1, "prismatic": 1, "planar": 3, "floating": 6}
-
-
 def _velocity_rows(robot) -> int:
     """The joint velocities Pinocchio's model of the robot has, read from the text: each
     joint's, a mimic joint's too (the model keeps it, its leader's multiple)."""
-    return sum(_VELOCITIES.get(joint.get("type"), 0) for joint in robot.joints.values())
+    return sum(DEGREES.get(joint.get("type"), 0) for joint in robot.joints.values())
 
 
 def _inertials_within(robot) -> None:

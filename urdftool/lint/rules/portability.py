@@ -34,7 +34,7 @@ from pathlib import Path
 from urdftool import simulators as facts
 from urdftool.description.files import kind_of, no_file_there
 from urdftool.numbers import number
-from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
+from urdftool.description.urdf import DEGREES, LIMITED, VARIABLE
 from urdftool.description.values import limit_range, number_tuple, origin_pose
 from urdftool.description.xml import attribute, child_list, first_child
 from urdftool.lint.catalogue import Severity, rule
@@ -911,10 +911,6 @@ def drake_lower_above_upper(robot):
     for joint, limit, low, high in _inverted(robot):
         yield limit, (f"joint '{_name(joint)}': lower {low:g} > upper {high:g}: "
                       f"{_as_of(robot, 'drake')} stops the load")
-
-
-DEGREES = {**dict.fromkeys(MOVING, 1), "fixed": 0,
-           "floating": 6, "planar": 3}
 
 
 @rule("U943", "drake-mimic-dof", Severity.ERROR)
