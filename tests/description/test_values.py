@@ -9,10 +9,10 @@ import pytest
 from lxml import etree
 
 from urdftool.description.load import load
-from urdftool.description.values import (Origin, from_chars_double, limit_bound, limit_range,
-                                         number_tuple, origin, origin_pose, parse_numbers,
-                                         stream_double, strtod_double, urdfdom_refuses,
-                                         urdfdom_spelling)
+from urdftool.description.values import (Origin, axis_xyz, from_chars_double, limit_bound,
+                                         limit_range, number_tuple, origin, origin_pose,
+                                         parse_numbers, stream_double, strtod_double,
+                                         urdfdom_refuses, urdfdom_spelling)
 from urdftool.kinematics import dh, transforms
 from urdftool.physics import mass, mat3
 
@@ -255,3 +255,13 @@ def test_limit_range_is_urdfdoms(kind, limit, expected):
     assert limit_range(kind, element) == expected
     if expected is not None:
         assert (limit_bound(element, "lower"), limit_bound(element, "upper")) == expected
+
+
+@pytest.mark.parametrize("joint, expected", [
+    ('<joint><axis xyz="0 0 2"/></joint>', (0.0, 0.0, 2.0)),
+    ("<joint/>", (1.0, 0.0, 0.0)),  # no <axis>: urdfdom's default x
+    ("<joint><axis/></joint>", (0.0, 0.0, 0.0)),  # no xyz: the axis urdfdom cleared
+    ('<joint><axis xyz="0 1"/></joint>', None),  # urdfdom refuses the joint
+])
+def test_axis_xyz_is_urdfdoms(joint, expected):
+    assert axis_xyz(etree.fromstring(joint)) == expected

@@ -175,6 +175,22 @@ def limit_bound(limit, name: str) -> float | None:
     return values[0] if values else None
 
 
+def axis_xyz(joint) -> tuple[float, float, float] | None:
+    """The three numbers of a joint's axis as urdfdom reads them (joint.cpp, parseJoint):
+    ``1 0 0`` without an ``<axis>``; ``0 0 0`` for an ``<axis>`` without ``xyz`` (urdfdom keeps
+    the axis it cleared: the joint has no direction, and moves nothing in RViz or Pinocchio);
+    None when ``xyz`` is not three numbers (urdfdom refuses the joint). Not finite is a number
+    here. The one reading of an axis: physics.frames' (the rules') and the kinematics' unit
+    axes and dynamics' words on Pinocchio's all start from it."""
+    element = first_child(joint, "axis")
+    if element is None:
+        return (1.0, 0.0, 0.0)
+    text = element.get("xyz")
+    if text is None:
+        return (0.0, 0.0, 0.0)
+    return number_tuple(text, 3)[0]
+
+
 _UNREAD = object()  # (origin_pose: the first <origin> not looked for yet)
 
 

@@ -671,12 +671,12 @@ def _axis_problem(element, name: str, modelled) -> str:
     """Why Pinocchio's axis of joint ``name`` is not a unit vector: the file's has no direction,
     or Eigen's ``normalized`` (the sum of squares, unscaled) overflowed or underflowed on it:
     ``1e308 1e308 1e308`` becomes ``0 0 0`` there, a joint that never moves."""
-    from urdftool.description.values import parse_numbers
+    from urdftool.description.values import axis_xyz
     from urdftool.numbers import numbers, unit
 
     axis = element.find("axis") if element is not None else None
     written = axis.get("xyz") if axis is not None else None
-    values, _ = parse_numbers(written or "1 0 0", 3)
+    values = axis_xyz(element) if element is not None else (1.0, 0.0, 0.0)  # (<axis/>: 0 0 0)
     direction = unit(values) if values else None
     if direction is None:
         return f"joint '{name}': <axis> has no direction; give a unit vector such as '0 0 1'"
