@@ -9,8 +9,9 @@ import pytest
 from lxml import etree
 
 from urdftool.description.load import load
-from urdftool.description.values import (Origin, from_chars_double, number_tuple, origin,
-                                         origin_pose, parse_numbers, stream_double, strtod_double,
+from urdftool.description.values import (Origin, axis_xyz, from_chars_double, limit_bound,
+                                         limit_range, number_tuple, origin, origin_pose,
+                                         parse_numbers, stream_double, strtod_double,
                                          urdfdom_refuses, urdfdom_spelling)
 from urdftool.kinematics import dh, transforms
 from urdftool.physics import mass, mat3
@@ -239,3 +240,28 @@ def test_ros2_control_parsers_read_as_the_cxx_does(text, stream, chars, stod):
     assert same(stream_double(text), stream)
     assert same(from_chars_double(text), chars)
     assert same(strtod_double(text), stod)
+
+
+@pytest.mark.parametrize("kind, limit, expected", [
+    ("revolute", '<limit lower="-1" upper="2"/>', (-1.0, 2.0)),
+    ("prismatic", '<limit upper="0.5"/>', (0.0, 0.5)),  # a bound not written is urdfdom's 0
+    ("revolute", '<limit lower="-inf" upper="1"/>', (-math.inf, 1.0)),  # a number, not finite
+    ("revolute", '<limit lower="a" upper="1"/>', None),
+    ("continuous", '<limit lower="-1" upper="1"/>', None),  # no range limits it
+    ("fixed", '<limit lower="-1" upper="1"/>', None),
+])
+def test_limit_range_is_urdfdoms(kind, limit, expected):
+    element = etree.fromstring(limit)
+    assert limit_range(kind, element) == expected
+    if expected is not None:
+        assert (limit_bound(element, "lower"), limit_bound(element, "upper")) == expected
+
+
+@pytest.mark.parametrize("joint, expected", [
+    ('<joint><axis xyz="0 0 2"/></joint>', (0.0, 0.0, 2.0)),
+    ("<joint/>", (1.0, 0.0, 0.0)),  # no <axis>: urdfdom's default x
+    ("<joint><axis/></joint>", (0.0, 0.0, 0.0)),  # no xyz: the axis urdfdom cleared
+    ('<joint><axis xyz="0 1"/></joint>', None),  # urdfdom refuses the joint
+])
+def test_axis_xyz_is_urdfdoms(joint, expected):
+    assert axis_xyz(etree.fromstring(joint)) == expected

@@ -570,6 +570,19 @@ def test_an_origin_that_is_not_finite_is_a_located_error(tmp_path, origin):
         KinematicModel(robot)
 
 
+def test_an_axis_without_xyz_is_urdfdoms_zero_axis(tmp_path):
+    """``<axis/>`` is urdfdom's 0 0 0 (parseJoint reads xyz only when written, after clearing
+    the axis): Pinocchio's joint turns about nothing, and physics.frames read no direction;
+    fk turned it about x (description.values.axis_xyz, the one reading now)."""
+    from conftest import load_text
+
+    robot = load_text(tmp_path, """<robot name="r"><link name="a"/><link name="b"/>
+      <joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>""")
+    with pytest.raises(FKError, match=r"<axis> without xyz \(urdfdom's 0 0 0\) has no direction"):
+        KinematicModel(robot)
+
+
 def test_a_chain_of_3000_mimic_joints_has_its_values(tmp_path):
     """Each joint mimicking the one before, twice its value plus 0.001: mimic_source recursed
     once per joint (RecursionError from fk, ik, dynamics, collisions, workspace) and walked

@@ -276,7 +276,7 @@ def joint_configurations(robot) -> list[dict]:
     """The zero configuration and :data:`CONFIGURATIONS` more, each joint inside its limits
     (the same for every loader): deterministic, different for each joint."""
     from urdftool.description.urdf import MOVING
-    from urdftool.description.values import number_tuple
+    from urdftool.description.values import limit_range
     from urdftool.description.xml import first_child
 
     configurations = [{}]
@@ -286,15 +286,13 @@ def joint_configurations(robot) -> list[dict]:
         configuration = {}
         for position, joint in enumerate(movable):
             fraction = ((index + 1) * 0.29 + position * 0.137) % 1.0
-            limit = first_child(joint, "limit")
-            low = number_tuple(limit.get("lower", "0"), 1)[0] if limit is not None else None
-            high = number_tuple(limit.get("upper", "0"), 1)[0] if limit is not None else None
-            if joint.get("type") == "continuous" or not low or not high or \
-                    not low[0] < high[0] or not math.isfinite(high[0] - low[0]):
+            bounds = limit_range(joint.get("type"), first_child(joint, "limit"))
+            if bounds is None or not bounds[0] < bounds[1] or \
+                    not math.isfinite(bounds[1] - bounds[0]):  # (continuous: None)
                 value = -1.2 + 2.4 * fraction if joint.get("type") != "prismatic" else \
                     -0.05 + 0.1 * fraction
             else:
-                value = low[0] + (high[0] - low[0]) * fraction
+                value = bounds[0] + (bounds[1] - bounds[0]) * fraction
             configuration[joint.get("name")] = round(value, 6)
         configurations.append(configuration)
     return configurations

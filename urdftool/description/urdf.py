@@ -14,6 +14,8 @@ AXIS = MOVING + ("planar",)  # an <axis> is read (the planar joint's normal)
 VARIABLE = MOVING + ("floating", "planar")  # the child link moves: every type but fixed
 ANGULAR = ("revolute", "continuous")  # the variable is an angle in [rad]
 UNITS = {"revolute": "rad", "prismatic": "m"}  # of the <limit> lower/upper of a LIMITED joint
+# a joint's degrees of freedom: how many numbers its velocity is (Pinocchio's nv, Drake's DOF)
+DEGREES = {**dict.fromkeys(MOVING, 1), "fixed": 0, "floating": 6, "planar": 3}
 
 # <geometry> children and the attributes each needs: (attribute, how many numbers; None: text).
 SHAPES = ("box", "cylinder", "sphere", "mesh")

@@ -8,6 +8,7 @@ import re
 import sys
 from collections import namedtuple
 
+from urdftool.description.urdf import LIMITED
 from urdftool.description.xml import first_child
 
 # What urdfdom's parser accepts as a double (no hex, no digit separators, ASCII digits only:
@@ -143,6 +144,51 @@ def number(element, attribute: str, default: float | None = None):
         return default
     values, problem = parse_numbers(text, 1)
     return values[0] if values else None
+
+
+def limit_range(kind: str | None, limit, texts: tuple | None = None
+                ) -> tuple[float, float] | None:
+    """(lower, upper) of a joint's ``<limit>``, as urdfdom reads them (joint.cpp,
+    parseJointLimits): each bound as :func:`limit_bound` reads it; None when the joint is not
+    revolute or prismatic (``kind``: :data:`~urdftool.description.urdf.LIMITED`, the types
+    whose range limits them), has no ``<limit>``, or either bound is no number. The one
+    reading of a joint's range: the joint rules, Drake's inverted limits, SRDF states, MoveIt's
+    and the spec's limits, symmetry and the crosscheck's poses all compare against it.
+
+    ``texts``: (lower, upper) as written, for a caller that has them read already."""
+    if limit is None or kind not in LIMITED:
+        return None
+    lower_text, upper_text = (limit.get("lower"), limit.get("upper")) if texts is None \
+        else texts
+    lower, _ = number_tuple("0" if lower_text is None else lower_text, 1)
+    upper, _ = number_tuple("0" if upper_text is None else upper_text, 1)
+    return (lower[0], upper[0]) if lower and upper else None
+
+
+def limit_bound(limit, name: str) -> float | None:
+    """Bound ``name`` ("lower" or "upper") of a revolute or prismatic joint's ``<limit>`` as
+    urdfdom reads it: 0 when it is not written (urdfdom's default, which the joint then
+    keeps: a planner stops there); None when it is no number. A number not finite is one
+    here. For a caller that compares each bound on its own (:func:`limit_range` for both)."""
+    text = limit.get(name)
+    values, _ = number_tuple("0" if text is None else text, 1)
+    return values[0] if values else None
+
+
+def axis_xyz(joint) -> tuple[float, float, float] | None:
+    """The three numbers of a joint's axis as urdfdom reads them (joint.cpp, parseJoint):
+    ``1 0 0`` without an ``<axis>``; ``0 0 0`` for an ``<axis>`` without ``xyz`` (urdfdom keeps
+    the axis it cleared: the joint has no direction, and moves nothing in RViz or Pinocchio);
+    None when ``xyz`` is not three numbers (urdfdom refuses the joint). Not finite is a number
+    here. The one reading of an axis: physics.frames' (the rules') and the kinematics' unit
+    axes and dynamics' words on Pinocchio's all start from it."""
+    element = first_child(joint, "axis")
+    if element is None:
+        return (1.0, 0.0, 0.0)
+    text = element.get("xyz")
+    if text is None:
+        return (0.0, 0.0, 0.0)
+    return number_tuple(text, 3)[0]
 
 
 _UNREAD = object()  # (origin_pose: the first <origin> not looked for yet)

@@ -509,19 +509,22 @@ def _rotation(roll: float, pitch: float, yaw: float) -> list[list[float]]:
 
 
 def unit_axis(element) -> np.ndarray:
-    """The joint's unit axis (URDF's default: x); within Eigen's ``isApprox`` of x, y or z,
-    that axis exactly, as Pinocchio models the joint. The one reading of a joint's axis as a
+    """The joint's unit axis (:func:`~urdftool.description.values.axis_xyz`: x without an
+    ``<axis>``); within Eigen's ``isApprox`` of x, y or z, that axis exactly, as Pinocchio
+    models the joint. The one reading of a joint's axis as a
     direction (fk, dh, render's scene): scaled before it is squared (``1e308 1e308 1e308`` and
     ``1e-320 0 0`` have one), FKError for an axis with none (``0 0 0``, not finite)."""
-    from urdftool.description.values import parse_numbers
+    from urdftool.description.values import axis_xyz
 
-    axis_element = element.find("axis")
-    values, _ = parse_numbers(axis_element.get("xyz") if axis_element is not None else "1 0 0", 3)
+    values = axis_xyz(element)  # (urdfdom's: <axis/> without xyz is 0 0 0)
     axis = np.array(values or (1.0, 0.0, 0.0), dtype=float)
     direction = vector_unit(axis)  # scaled first: 1e308 1e308 1e308 has a direction
     if direction is None:  # urdfdom accepts it; every pose would be NaN
-        raise FKError(f"joint '{element.get('name')}': <axis xyz> '{axis_element.get('xyz')}' has "
-                      "no direction; give a unit vector such as '0 0 1'", element)
+        written = element.find("axis").get("xyz")
+        said = f"<axis xyz> '{written}'" if written is not None else \
+            "<axis> without xyz (urdfdom's 0 0 0)"
+        raise FKError(f"joint '{element.get('name')}': {said} has no direction; give a unit "
+                      "vector such as '0 0 1'", element)
     length = vector_length(axis)
     for unit in np.eye(3):  # Pinocchio's joint about x, y or z: Eigen's isApprox (1e-12)
         if vector_length(axis - unit) <= 1e-12 * min(length, 1.0):

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from urdftool.description.urdf import DEGREES
 from urdftool.errors import DynamicsError
 from urdftool.kinematics.configuration import FLOATING_COORDINATES
 from urdftool.kinematics.model import oversized_data
@@ -381,13 +382,10 @@ def _computed(model: Model, q: np.ndarray, q_values: dict, v_values: dict | None
     return result
 
 
-_VELOCITIES = {"revolute": 1, "continuous": 1, "prismatic": 1, "planar": 3, "floating": 6}
-
-
 def _velocity_rows(robot) -> int:
     """The joint velocities Pinocchio's model of the robot has, read from the text: each
     joint's, a mimic joint's too (the model keeps it, its leader's multiple)."""
-    return sum(_VELOCITIES.get(joint.get("type"), 0) for joint in robot.joints.values())
+    return sum(DEGREES.get(joint.get("type"), 0) for joint in robot.joints.values())
 
 
 def _inertials_within(robot) -> None:
@@ -673,12 +671,12 @@ def _axis_problem(element, name: str, modelled) -> str:
     """Why Pinocchio's axis of joint ``name`` is not a unit vector: the file's has no direction,
     or Eigen's ``normalized`` (the sum of squares, unscaled) overflowed or underflowed on it:
     ``1e308 1e308 1e308`` becomes ``0 0 0`` there, a joint that never moves."""
-    from urdftool.description.values import parse_numbers
+    from urdftool.description.values import axis_xyz
     from urdftool.numbers import numbers, unit
 
     axis = element.find("axis") if element is not None else None
     written = axis.get("xyz") if axis is not None else None
-    values, _ = parse_numbers(written or "1 0 0", 3)
+    values = axis_xyz(element) if element is not None else (1.0, 0.0, 0.0)  # (<axis/>: 0 0 0)
     direction = unit(values) if values else None
     if direction is None:
         return f"joint '{name}': <axis> has no direction; give a unit vector such as '0 0 1'"

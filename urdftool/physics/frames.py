@@ -10,8 +10,7 @@ the identity); a joint that names a missing link, or a link in a cycle, has no f
 
 from __future__ import annotations
 
-from urdftool.description.values import origin, parse_numbers
-from urdftool.description.xml import first_child
+from urdftool.description.values import axis_xyz, origin
 from urdftool.numbers import unit
 from urdftool.physics import mat3
 
@@ -80,14 +79,10 @@ def _walk(robot) -> tuple[dict[str, Frame], dict[str, Frame]]:
 
 
 def axis(joint) -> mat3.Vector | None:
-    """A joint's unit axis in its own frame (``1 0 0`` when absent), None when zero or
-    malformed. (:func:`~urdftool.description.xml.first_child`, not lxml's ``find``, which parses
-    its path on each call: the symmetry and wheel rules ask of the same joints again.)"""
-    element = first_child(joint, "axis")
-    values, problem = parse_numbers(element.get("xyz") if element is not None else "1 0 0", 3)
-    if problem or not values:
-        return None
-    return unit(values)  # scaled first: 1e308 1e308 1e308 has a direction
+    """A joint's unit axis in its own frame (:func:`~urdftool.description.values.axis_xyz`:
+    ``1 0 0`` when absent), None when zero or malformed."""
+    values = axis_xyz(joint)
+    return unit(values) if values else None  # scaled first: 1e308 1e308 1e308 has a direction
 
 
 def world_axis(robot, joint) -> mat3.Vector | None:

@@ -373,3 +373,16 @@ def test_false_adjacent_entries_walk_the_tree_once_not_once_each(tmp_path, monke
     assert [code for _, _, code in found] == ["U822"] * 500
     assert all("3 joints apart" in finding.message for finding in findings)
     assert len(built) <= 3
+
+
+def test_a_urdf_bound_not_written_is_urdfdoms_zero(tmp_path):
+    """A ``<limit>`` without ``lower`` is lower 0 to urdfdom, and so to MoveIt's model
+    (description.values.limit_bound); U816 skipped the bound as if there were none, so a
+    min_position of -1 said nothing of MoveIt planning below the joint's stop."""
+    robot = ROBOT.replace('lower="-1" upper="1"', 'upper="1"')
+    files = {"robot.urdf": robot, "robot.srdf": SRDF,
+             "joint_limits.yaml": "joint_limits:\n  head_joint:\n    has_position_limits: true\n"
+                                  "    min_position: -1\n    max_position: 1\n"}
+    found, findings = check_folder(tmp_path, files, select=("U816",))
+    assert found == [("joint_limits.yaml", 4, "U816")]
+    assert "min_position -1 is below the URDF's <limit lower=\"0\">" in findings[0].message

@@ -154,3 +154,15 @@ def test_a_number_yaml_1_1_reads_as_text_is_said_so(tmp_path):
     assert [f.message for f in findings] == [
         "joint 'head_joint': effort '1e3' must be a finite number (YAML 1.1 reads '1e3' as text: "
         "write it with a point, as 1.0e3)"]
+
+
+def test_a_bound_not_written_is_urdfdoms_zero(tmp_path):
+    """A ``<limit>`` without ``lower`` is lower 0 to urdfdom, and the joint stops there
+    (description.values.limit_bound, the reading U204 and the others share); U703 skipped the
+    bound as if there were none, so a spec from 10 deg up said nothing of a URDF from 0."""
+    robot = ROBOT.replace('lower="-1" upper="1"', 'upper="1"')
+    spec = "unit: deg\njoints:\n  head_joint: {lower: 10, upper: 57.3}\n"
+    _, findings = check_folder(tmp_path, {"robot.urdf": robot, "joint_limits.yaml": spec})
+    assert [(f.code, f.message) for f in findings] == [
+        ("U703", "joint 'head_joint': lower limit 0 deg is 10 deg beyond the spec's 10 deg "
+                 "(tolerance 0 deg)")]

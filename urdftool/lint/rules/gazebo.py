@@ -17,8 +17,9 @@ from urdftool.description.runtime import runtime, static_frames
 from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.description.controllers import runs_of
 from urdftool.lint.rules.controllers import hedged
-from urdftool.numbers import decimal_slip, number, numbers, unit
+from urdftool.numbers import decimal_slip, number, numbers
 from urdftool.physics import mat3
+from urdftool.physics.frames import joint_frames, link_frames, world_axis
 from urdftool.records import NEW, Record
 
 GEOMETRY_TOLERANCE = 0.05
@@ -220,28 +221,15 @@ HORIZONTAL = math.sin(math.radians(10))  # a wheel axis tilted less than 10 deg 
 def _separation(robot, left, right) -> float | None:
     """Distance between the two wheel joint origins along the left wheel axis (zero pose);
     across the robot (horizontally) when that axis is not horizontal."""
-    poses = _joint_frames(robot)
+    poses = joint_frames(robot)
     if left.get("name") not in poses or right.get("name") not in poses:
         return None
     left_position, right_position = poses[left.get("name")][0], poses[right.get("name")][0]
     delta = [a - b for a, b in zip(left_position, right_position)]
-    axis = _world_axis(robot, left)
+    axis = world_axis(robot, left)
     if axis is None or abs(axis[2]) > HORIZONTAL:
         return math.hypot(delta[0], delta[1])
     return abs(sum(d * a for d, a in zip(delta, axis)))
-
-
-def _world_axis(robot, joint):
-    """The joint's unit axis in the root frame at the zero pose, or None (zero or unreadable)."""
-    poses = _joint_frames(robot)
-    if joint.get("name") not in poses:
-        return None
-    element = joint.find("axis")
-    axis, problem = parse_numbers(element.get("xyz") if element is not None else "1 0 0", 3)
-    direction = unit(axis) if not problem and axis else None  # scaled: no square overflows
-    if direction is None:
-        return None
-    return mat3.apply(poses[joint.get("name")][1], list(direction))
 
 
 def _wheel_diameter(robot, joint) -> float | None:
@@ -256,50 +244,6 @@ def _wheel_diameter(robot, joint) -> float | None:
                 if values:
                     return 2 * values[0]
     return None
-
-
-def _joint_frames(robot) -> dict:
-    """Joint name -> (position, rotation) of its frame in the root frame at the zero pose."""
-    return robot.memo(_joint_frames, lambda: _frames(robot))
-
-
-def _frames(robot) -> dict:
-    by_child = {}
-    for joint in robot.children("joint"):
-        child = joint.find("child")
-        if child is not None and child.get("link"):
-            by_child.setdefault(child.get("link"), joint)
-    frames: dict = {}
-
-    def frame(joint):
-        """The joint's frame in the root's, its ancestors' composed first: walked up in a loop,
-        not by recursion (a chain of 3,000 joints written leaf first is as deep as it is long),
-        at most as many steps as there are joints (a loop of joints stops there)."""
-        chain, base, depth = [], None, 0
-        while True:
-            if joint.get("name") in frames:
-                base = frames[joint.get("name")]
-                break
-            chain.append(joint)
-            parent = joint.find("parent")
-            above = by_child.get(parent.get("link")) if parent is not None else None
-            if above is None or depth > len(by_child):
-                break
-            joint, depth = above, depth + 1
-        for below in reversed(chain):
-            local = mat3.placement(origin(below))  # a malformed part counts as 0
-            if base is None:
-                frames[below.get("name")] = local
-            else:
-                position, rotation = base
-                frames[below.get("name")] = (mat3.add(position, mat3.apply(rotation, local[0])),
-                                             mat3.multiply(rotation, local[1]))
-            base = frames[below.get("name")]
-        return base
-
-    for joint in robot.children("joint"):
-        frame(joint)
-    return frames
 
 
 def _inside(element, gazebo, tag: str) -> bool:
@@ -484,12 +428,12 @@ def _layout_problems(robot, drive: _Drive):
     """(where, message) for each way ``drive``'s wheels cannot drive (see U617)."""
     left, right = drive.side(robot, "left"), drive.side(robot, "right")
     where = {name: place for _, name, place in drive.wheels}
-    poses = _joint_frames(robot)
+    poses = joint_frames(robot)
     for joint in (left, right):
         if joint is None:
             continue
         name = joint.get("name")
-        axis = _world_axis(robot, joint)
+        axis = world_axis(robot, joint)
         if axis is not None and abs(axis[2]) > HORIZONTAL:
             yield where[name], (f"{drive.label}: wheel joint '{name}' turns about "
                                 f"({numbers(axis, 3, ', ')}) in the root frame, "
@@ -502,7 +446,7 @@ def _layout_problems(robot, drive: _Drive):
     if left is None or right is None:
         return
     names = left.get("name"), right.get("name")
-    axes = _world_axis(robot, left), _world_axis(robot, right)
+    axes = world_axis(robot, left), world_axis(robot, right)
     if axes[0] is not None and left.get("type") in ("continuous", "revolute") and \
             abs(axes[0][2]) <= HORIZONTAL and abs(axes[0][1]) < SIDEWAYS:
         yield where[names[0]], (f"{drive.label}: wheel joint '{names[0]}' turns about "
@@ -526,7 +470,7 @@ def _layout_problems(robot, drive: _Drive):
 def _caster_below(robot, drive, wheel, where):
     """A caster sphere reaching below the contact plane of ``wheel`` (zero pose)."""
     diameter = _wheel_diameter(robot, wheel)
-    frames = _link_frames(robot)
+    frames = link_frames(robot)
     child = wheel.find("child")
     if diameter is None or child is None or child.get("link") not in frames:
         return
@@ -547,19 +491,6 @@ def _caster_below(robot, drive, wheel, where):
                               f"{number(1000 * (ground - bottom), places=0)} mm below the drive "
                               f"wheels' contact plane (z = {number(ground, 3)} m); the "
                               "wheels would hang in the air: raise the caster or shrink it")
-
-
-def _link_frames(robot) -> dict:
-    """Link name -> (position, rotation) in the root frame at the zero pose."""
-    frames = {}
-    for joint in robot.children("joint"):
-        child = joint.find("child")
-        if child is not None and child.get("link") and joint.get("name") in _joint_frames(robot):
-            frames.setdefault(child.get("link"), _joint_frames(robot)[joint.get("name")])
-    root = next((name for name in robot.links if name not in frames), None)
-    if root is not None:
-        frames[root] = ([0.0, 0.0, 0.0], mat3.rpy_matrix([0.0, 0.0, 0.0]))
-    return frames
 
 
 # Plugin libraries of gazebo_ros_pkgs (ros-simulation/gazebo_ros_pkgs, gazebo_plugins/CMakeLists.txt

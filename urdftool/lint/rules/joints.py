@@ -9,7 +9,7 @@ from urdftool.numbers import computed, length, number, unit
 from urdftool.errors import available
 from urdftool.description.urdf import (AXIS, JOINT_NUMBER_PLACES, JOINT_TYPES, LIMITED, MOVING,
                                        NUMBERS)
-from urdftool.description.values import finite, number_tuple, parse_numbers
+from urdftool.description.values import finite, limit_range, number_tuple, parse_numbers
 
 # An axis is a unit vector when its length is within this of 1. CAD exporters round each
 # component to 5 or 6 significant digits, which leaves the length a few 1e-6 off (moveo_ros,
@@ -102,14 +102,12 @@ def limit_missing_effort_velocity(robot):
 def _bounds(robot, kind: str | None, limit, read: dict | None = None
             ) -> tuple[float, float] | None:
     """(lower, upper) of a revolute or prismatic joint (``kind``) whose ``<limit>`` range
-    parses; a missing bound is 0, as in urdfdom. ``read``: :func:`_texts`, for a caller
-    asking of every joint."""
+    parses (:func:`~urdftool.description.values.limit_range`, its texts read once per robot).
+    ``read``: :func:`_texts`, for a caller asking of every joint."""
     if limit is None or kind not in LIMITED:
         return None
     texts = (_texts(robot) if read is None else read)[limit]
-    lower, _ = number_tuple("0" if texts[_LOWER] is None else texts[_LOWER], 1)
-    upper, _ = number_tuple("0" if texts[_UPPER] is None else texts[_UPPER], 1)
-    return (lower[0], upper[0]) if lower and upper else None
+    return limit_range(kind, limit, (texts[_LOWER], texts[_UPPER]))
 
 
 def _ranges(robot) -> list:

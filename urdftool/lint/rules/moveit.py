@@ -14,7 +14,7 @@ from urdftool.description.documents import read_srdf
 from urdftool.description.files import listing
 from urdftool.description.companions import companions
 from urdftool.description.urdf import LIMITED, MOVING
-from urdftool.description.values import parse_numbers
+from urdftool.description.values import limit_bound, parse_numbers
 from urdftool.errors import available
 from urdftool.description.runtime import moveit_action_remaps, moveit_execution
 from urdftool.lint.catalogue import Conditional, Severity, rule
@@ -212,8 +212,15 @@ def moveit_limits_unknown_joint(robot):
 
 
 def _urdf_limit(joint, key: str) -> float | None:
+    """The URDF's ``key`` of the joint's ``<limit>``, None without one: a bound as urdfdom
+    (and so MoveIt) reads it (:func:`~urdftool.description.values.limit_bound`, 0 when not
+    written), an effort or velocity when written."""
     limit = joint.find("limit")
-    if limit is None or limit.get(key) is None:
+    if limit is None:
+        return None
+    if key in ("lower", "upper"):
+        return limit_bound(limit, key)
+    if limit.get(key) is None:
         return None
     values, problem = parse_numbers(limit.get(key), 1)
     return None if problem else values[0]

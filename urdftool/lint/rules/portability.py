@@ -34,8 +34,8 @@ from pathlib import Path
 from urdftool import simulators as facts
 from urdftool.description.files import kind_of, no_file_there
 from urdftool.numbers import number
-from urdftool.description.urdf import LIMITED, MOVING, VARIABLE
-from urdftool.description.values import number_tuple, origin_pose
+from urdftool.description.urdf import DEGREES, LIMITED, VARIABLE
+from urdftool.description.values import limit_range, number_tuple, origin_pose
 from urdftool.description.xml import attribute, child_list, first_child
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.physics import mat3
@@ -211,15 +211,13 @@ def _referenced_removals(robot, removed: dict, simulator: str):
 
 def _inverted(robot):
     """(joint, its <limit>, lower, upper) of each revolute or prismatic joint whose lower limit
-    is above its upper one (urdfdom's reading: a missing bound is 0)."""
+    is above its upper one (:func:`~urdftool.description.values.limit_range`: a missing bound
+    is 0)."""
     for joint in robot.children("joint"):
         limit = first_child(joint, "limit")
-        if limit is None or _type(joint) not in LIMITED:
-            continue
-        low = number_tuple(limit.get("lower", "0"), 1)[0]
-        high = number_tuple(limit.get("upper", "0"), 1)[0]
-        if low and high and low[0] > high[0]:
-            yield joint, limit, low[0], high[0]
+        bounds = limit_range(_type(joint), limit)
+        if bounds is not None and bounds[0] > bounds[1]:
+            yield joint, limit, *bounds
 
 
 # ==== MuJoCo (U92x) ===========================================================================
@@ -913,10 +911,6 @@ def drake_lower_above_upper(robot):
     for joint, limit, low, high in _inverted(robot):
         yield limit, (f"joint '{_name(joint)}': lower {low:g} > upper {high:g}: "
                       f"{_as_of(robot, 'drake')} stops the load")
-
-
-DEGREES = {**dict.fromkeys(MOVING, 1), "fixed": 0,
-           "floating": 6, "planar": 3}
 
 
 @rule("U943", "drake-mimic-dof", Severity.ERROR)

@@ -17,7 +17,7 @@ from urdftool.numbers import decimal_slip, number
 from urdftool.description.actuation import moving_joints
 from urdftool.errors import available
 from urdftool.description.urdf import MOVING
-from urdftool.description.values import parse_numbers
+from urdftool.description.values import limit_bound, parse_numbers
 from urdftool.records import Record
 
 UNITS = {"deg": math.pi / 180, "rad": 1.0}
@@ -175,8 +175,15 @@ def spec_joint_missing(robot):
 
 
 def _limit(joint, attribute):
+    """The URDF's ``attribute`` of a revolute or prismatic joint's ``<limit>``, None without
+    one: a bound as urdfdom reads it (:func:`~urdftool.description.values.limit_bound`, 0 when
+    not written), an effort or velocity when written."""
     limit = joint.find("limit")
-    values, _ = parse_numbers(limit.get(attribute) if limit is not None else None, 1)
+    if limit is None:
+        return None
+    if attribute in ("lower", "upper"):
+        return limit_bound(limit, attribute)
+    values, _ = parse_numbers(limit.get(attribute), 1)
     return values[0] if values else None
 
 

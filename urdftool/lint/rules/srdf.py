@@ -19,7 +19,7 @@ from urdftool.lint.catalogue import Conditional, Severity, rule
 from urdftool.numbers import number
 from urdftool.errors import available, listed
 from urdftool.description.urdf import LIMITED
-from urdftool.description.values import parse_numbers
+from urdftool.description.values import limit_range, parse_numbers
 from urdftool.description.xml import attribute
 from urdftool.diagnostics import line_end, line_start
 
@@ -217,15 +217,14 @@ def srdf_state_outside_limits(robot):
         if limit is None or joint.get("type") not in LIMITED:
             continue
         values, problem = parse_numbers(element.get("value"), 1)
-        lower, _ = parse_numbers(limit.get("lower", "0"), 1)
-        upper, _ = parse_numbers(limit.get("upper", "0"), 1)
+        bounds = limit_range(joint.get("type"), limit)
         state = element.getparent().get("name")
         if problem:
             yield srdf.at(element.sourceline), f"SRDF group state '{state}': joint value {problem}"
-        elif lower and upper and not (lower[0] - LIMIT_TOLERANCE <= values[0] <= upper[0] + LIMIT_TOLERANCE):
+        elif bounds and not (bounds[0] - LIMIT_TOLERANCE <= values[0] <= bounds[1] + LIMIT_TOLERANCE):
             yield srdf.at(element.sourceline), (
                 f"SRDF group state '{state}' sets joint '{element.get('name')}' to {values[0]:g}, "
-                f"outside its URDF limits [{lower[0]:g}, {upper[0]:g}]")
+                f"outside its URDF limits [{bounds[0]:g}, {bounds[1]:g}]")
 
 
 @rule("U807", "srdf-duplicate-group", Severity.ERROR)

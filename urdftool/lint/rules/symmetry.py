@@ -29,7 +29,7 @@ import math
 from dataclasses import dataclass
 
 from urdftool.description.urdf import VARIABLE
-from urdftool.description.values import number as attribute_number
+from urdftool.description.values import finite, limit_range, number as attribute_number
 from urdftool.description.xml import first_child
 from urdftool.lint.catalogue import Severity, rule
 from urdftool.numbers import decimal_slip, number, numbers
@@ -403,13 +403,9 @@ def _rigid_end(robot, name: str) -> bool:
 
 
 def _limits(joint) -> tuple[float, float] | None:
-    limit = first_child(joint, "limit")  # (lxml's find parses its path on every call)
-    if limit is None:
-        return None
-    lower, upper = attribute_number(limit, "lower", 0.0), attribute_number(limit, "upper", 0.0)
-    if lower is None or upper is None or not (math.isfinite(lower) and math.isfinite(upper)):
-        return None
-    return lower, upper
+    """The joint's finite range (:func:`~urdftool.description.values.limit_range`), or None."""
+    bounds = limit_range(joint.get("type"), first_child(joint, "limit"))  # (not lxml's find,
+    return bounds if bounds is not None and finite(bounds) else None  # which parses a path)
 
 
 def _expected_axis(robot, left, found, pair) -> mat3.Vector | None:
