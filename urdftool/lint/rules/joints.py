@@ -151,10 +151,10 @@ def _axes(robot) -> list:
             axis = robot.child(joint, "axis")
             if axis is None or kinds[joint] not in AXIS:
                 continue
-            text = texts[axis][0]  # (its xyz)
-            known = measured.get(text, _UNMEASURED)
+            text = texts[axis][0]  # (its xyz; None for an <axis> without one: urdfdom's
+            known = measured.get(text, _UNMEASURED)  # cleared 0 0 0, values.axis_xyz)
             if known is _UNMEASURED:
-                values, _ = number_tuple(text, 3)
+                values, _ = number_tuple("0 0 0" if text is None else text, 3)
                 known = measured[text] = (values, length(values), _vanishes(values)) \
                     if values is not None and finite(values) else None
             if known is not None:
@@ -177,11 +177,19 @@ def zero_axis(robot):
     (the joint does not move) or replaced by x (KDL, MuJoCo), and urdftool's fk and dynamics
     refuse it.
 
-    Bad: ``<axis xyz="0 0 0"/>``, ``<axis xyz="0 0 1e-200"/>``
+    An ``<axis>`` without ``xyz`` is the same: urdfdom reads it as ``0 0 0`` (the axis it
+    cleared; 1 0 0 is only for a joint with no ``<axis>`` at all), Pinocchio builds a revolute
+    joint about no axis, PyBullet reads memory it never set, and MuJoCo refuses the file.
+
+    Bad: ``<axis xyz="0 0 0"/>``, ``<axis xyz="0 0 1e-200"/>``, ``<axis/>``
     Good: ``<axis xyz="0 0 1"/>``
     """
     for joint, axis, values, length, vanishes in _axes(robot):
-        if length == 0:
+        if length == 0 and _texts(robot)[axis][0] is None:
+            yield axis, (f"joint '{_name(joint)}' has an <axis> without xyz, which urdfdom "
+                         "(ROS, Gazebo, MoveIt, Pinocchio) reads as 0 0 0, no direction, and "
+                         "MuJoCo refuses; write xyz as a unit vector")
+        elif length == 0:
             yield axis, f"joint '{_name(joint)}' has a zero-length axis; give a unit vector"
         elif vanishes:
             yield axis, (f"joint '{_name(joint)}' has an axis of length {number(length, 3)}, "
