@@ -645,7 +645,7 @@ def test_an_error_of_the_defaults_build_no_launch_file_runs_is_a_warning(tmp_pat
     robot = str(tmp_path / "arm/urdf/arm.urdf.xacro")
     found = {f.line: f for f in load_and_check(robot, CheckOptions()).findings if f.code == "U105"}
     assert found[9].severity == Severity.WARNING and found[9].urdfdom_refuses
-    assert "arm.launch.py builds it with frames:=true, where it does not hold" in found[9].message
+    assert "arm.launch.py builds it with frames:=true, which does not have it" in found[9].message
     assert found[11].severity == Severity.ERROR  # (the launch file's build has it too)
     chosen = load_and_check(robot, CheckOptions(xacro_args={"frames": "false"})).findings
     assert [f.severity for f in chosen if f.code == "U105"] == [Severity.ERROR] * 2

@@ -327,9 +327,9 @@ def _as_launched(robot, findings: list[Finding], options: CheckOptions, build) -
     other.companion_paths, other.mesh_limits = robot.companion_paths, robot.mesh_limits
     other.xacro_args = dict(launched.args)
     there = {(f.code, f.file, f.line) for f in check_robot(other, options.selection)}
-    condition = (f"; so in a build with the robot's own argument defaults (a plain xacro of "
-                 f"the file), but {launched.named} builds it with {launched.shown_args()}, "
-                 "where it does not hold (--arg NAME=VALUE checks a build)")
+    condition = (f"; that is the build with the robot's own argument defaults (a plain xacro "
+                 f"of the file): {launched.named} builds it with {launched.shown_args()}, "
+                 "which does not have it (--arg NAME=VALUE checks a build)")
     return distinct_sorted([
         Finding(f.code, f.name, Severity.WARNING, f.message + condition, f.location, f.fix,
                 f.target, f.not_checked, f.repeated, f.urdfdom_takes,
