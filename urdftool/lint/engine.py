@@ -326,6 +326,7 @@ def _as_launched(robot, findings: list[Finding], options: CheckOptions, build) -
         return findings
     other.companion_paths, other.mesh_limits = robot.companion_paths, robot.mesh_limits
     other.xacro_args = dict(launched.args)
+    other.rebuild = lambda more: build({**launched.args, **more})  # (as robot's: rules ask it)
     there = {(f.code, f.file, f.line) for f in check_robot(other, options.selection)}
     condition = (f"; that is the build with the robot's own argument defaults (a plain xacro "
                  f"of the file): {launched.named} builds it with {launched.shown_args()}, "
