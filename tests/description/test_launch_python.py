@@ -574,3 +574,27 @@ def generate_launch_description():
         loaded = {load.path.name for configuration, _ in runtime(checked).configurations
                   for load in configuration.loaded}
         assert loaded == {own}, robot
+
+
+def test_a_node_assigned_to_a_name_never_read_is_not_started(tmp_path):
+    """A spawner built into a variable the launch description never takes is never started
+    (wearable_robot_eval's eduexo_only.launch.py: a U619 error said it started together with
+    the trajectory controller); one the file reads, in a list or ``add_action``, is."""
+    root = _repo(tmp_path, {"p/package.xml": PACKAGE.format("p"), "p/launch/a.launch.py": '''
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+def generate_launch_description():
+    unused = Node(package="controller_manager", executable="spawner",
+                  arguments=["forward_position_controller"])
+    listed = Node(package="controller_manager", executable="spawner",
+                  arguments=["joint_trajectory_controller"])
+    added = Node(package="controller_manager", executable="spawner",
+                 arguments=["joint_state_broadcaster"])
+    ld = LaunchDescription([listed])
+    ld.add_action(added)
+    return ld
+'''})
+    started = [a for a in _read(root, "p/launch/a.launch.py").actions if isinstance(a, Start)]
+    assert sorted(_text(s.arguments[0]) for s in started) == [
+        "joint_state_broadcaster", "joint_trajectory_controller"]

@@ -95,3 +95,31 @@ def test_a_web_application_above_the_robots_repository_says_nothing_of_it(tmp_pa
                       "public/clone/r.urdf": PLAIN})
     (tmp_path / "public" / "clone" / ".git").mkdir()
     assert other_reader(load(str(tmp_path / "public" / "clone" / "r.urdf"))) is None
+
+
+def test_a_file_in_genesis_assets_is_genesis_read(tmp_path):
+    """Genesis-arter (a copy of the Genesis simulator): genesis/assets/urdf/... are read by
+    genesis/utils/urdf.py, whose urdfpy takes a <limit> without effort or velocity (a false
+    U203 error on PartNet-Mobility's mobility.urdf) and a link without <inertial> (U303).
+    Without the loader, or a folder of another name, or with ROS running it, it is urdfdom's."""
+    limitless = ('<robot name="r"><link name="a"/><link name="b"/><joint name="j" '
+                 'type="prismatic"><parent link="a"/><child link="b"/><axis xyz="0 1 0"/>'
+                 '<limit lower="-0.1" upper="0"/></joint></robot>')
+    (tmp_path / ".git").mkdir()  # (a clone: the repository the walk stays within)
+    _write(tmp_path, {"genesis/__init__.py": "", "genesis/utils/urdf.py": "import urdfpy\n",
+                      "genesis/assets/urdf/3763/mobility.urdf": limitless})
+    robot = load(str(tmp_path / "genesis/assets/urdf/3763/mobility.urdf"))
+    reader = other_reader(robot)
+    assert reader.kind == "genesis" and "the assets of the Genesis package" in reader.why
+    from urdftool.lint.engine import check_robot
+    [u203] = [f for f in check_robot(robot) if f.code == "U203"]
+    assert u203.severity.value == "warning" and u203.urdfdom_refuses
+    (tmp_path / "genesis/utils/urdf.py").unlink()
+    assert other_reader(load(str(tmp_path / "genesis/assets/urdf/3763/mobility.urdf"))) is None
+    _write(tmp_path, {"genesis/utils/urdf.py": "", "other/__init__.py": "",
+                      "other/utils/urdf.py": "", "other/assets/m.urdf": limitless,
+                      "genesis/assets/ros/package.xml": MANIFEST.format(
+                          name="bot", tools="<buildtool_depend>catkin</buildtool_depend>"),
+                      "genesis/assets/ros/m.urdf": limitless})
+    assert other_reader(load(str(tmp_path / "other/assets/m.urdf"))) is None
+    assert other_reader(load(str(tmp_path / "genesis/assets/ros/m.urdf"))) is None

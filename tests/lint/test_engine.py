@@ -610,3 +610,45 @@ def test_each_marked_shape_is_a_warning_in_a_file_drake_reads_and_an_error_in_ro
                                                CheckOptions()).findings if f.code == code]
         assert finding.severity == severity, finding
         assert finding.message.startswith("if urdfdom loads it (Drake") == (folder == "drake")
+
+
+def test_an_error_of_the_defaults_build_no_launch_file_runs_is_a_warning(tmp_path):
+    """autonomous_excavator's launch files build its xacro with use_nominal_extrinsics:=true,
+    which makes the camera frame a joint hangs from; the robot's own default (false) leaves
+    the joint naming a link that does not exist: a U105 error for a plain xacro of the file
+    alone, so a warning naming the launch file's build. An error that build has too stays one,
+    and so does this one when no launch file builds the robot otherwise."""
+    from urdftool.diagnostics import Severity
+
+    launch = ("import xacro\nfrom launch_ros.actions import Node\n\n"
+              "def generate_launch_description():\n"
+              "    doc = xacro.process_file(os.path.join(get_package_share_directory('arm'), "
+              "'urdf', 'arm.urdf.xacro'), mappings={'frames': 'true'})\n"
+              "    return LaunchDescription([Node(package='robot_state_publisher', "
+              "executable='robot_state_publisher', parameters=[{'robot_description': "
+              "doc.toxml()}])])\n")
+    files = {"arm/package.xml": "<package format='2'><name>arm</name></package>",
+             "arm/urdf/arm.urdf.xacro": """<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="frames" default="false"/>
+  <link name="base"/>
+  <xacro:if value="$(arg frames)">
+    <link name="optical"/>
+    <joint name="optical_joint" type="fixed"><parent link="base"/><child link="optical"/></joint>
+  </xacro:if>
+  <link name="tool"/>
+  <joint name="tool_joint" type="fixed"><parent link="optical"/><child link="tool"/></joint>
+  <link name="loose"/>
+  <joint name="loose_joint" type="fixed"><parent link="nowhere"/><child link="loose"/></joint>
+</robot>""",
+             "arm/launch/arm.launch.py": launch}
+    _repository(tmp_path, files)
+    robot = str(tmp_path / "arm/urdf/arm.urdf.xacro")
+    found = {f.line: f for f in load_and_check(robot, CheckOptions()).findings if f.code == "U105"}
+    assert found[9].severity == Severity.WARNING and found[9].urdfdom_refuses
+    assert "arm.launch.py builds it with frames:=true, which does not have it" in found[9].message
+    assert found[11].severity == Severity.ERROR  # (the launch file's build has it too)
+    chosen = load_and_check(robot, CheckOptions(xacro_args={"frames": "false"})).findings
+    assert [f.severity for f in chosen if f.code == "U105"] == [Severity.ERROR] * 2
+    (tmp_path / "arm/launch/arm.launch.py").unlink()
+    alone = load_and_check(robot, CheckOptions()).findings
+    assert [f.severity for f in alone if f.code == "U105"] == [Severity.ERROR] * 2

@@ -150,6 +150,11 @@ class _Reader:
         self.acts: list[_Act] = []
         self.steps, self.max_steps, self.room = 0, min(MAX_STEPS, room.steps), room
         self.walked: set[str] = set()
+        # names the launch file reads somewhere, and its own assignments: an action assigned
+        # only to names it never reads is never handed to a launch description
+        self.read_names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)
+                           and isinstance(n.ctx, ast.Load)}
+        self.own_assignments = {id(n) for n in ast.walk(tree) if isinstance(n, ast.Assign)}
 
     # --- statements -----------------------------------------------------------------------
 
@@ -212,6 +217,7 @@ class _Reader:
                 value = self.eval(statement.value, env, when, depth)
                 for target in statement.targets:
                     self.bind(target, value, env)
+                self.unread(statement, value)
             elif isinstance(statement, ast.AnnAssign) and statement.value is not None:
                 self.bind(statement.target, self.eval(statement.value, env, when, depth), env)
             elif isinstance(statement, ast.AugAssign) and isinstance(statement.target, ast.Name):
@@ -272,6 +278,19 @@ class _Reader:
             elif isinstance(statement, (ast.Import, ast.ImportFrom)):
                 self.imported(statement, env, depth)
         return None
+
+    def unread(self, statement: ast.Assign, value) -> None:
+        """Forget ``value``, a node or include just made, when ``statement`` of the launch file
+        assigns it only to names the file never reads: it is never handed to a launch
+        description, so never started (wearable_robot_eval's eduexo_only.launch.py builds
+        ``eduexo_forward_position_controller_node = Node(... spawner ...)`` and returns a
+        LaunchDescription without it). A name read anywhere in the file keeps it, whatever reads
+        it; a module the file imports is not asked."""
+        if isinstance(value, _Act) and value.kind in ("start", "include") and \
+                id(statement) in self.own_assignments and all(
+                    isinstance(t, ast.Name) and t.id not in self.read_names
+                    for t in statement.targets):
+            self.acts[:] = [act for act in self.acts if act is not value]
 
     def bind(self, target, value, env: dict) -> None:
         if isinstance(target, ast.Name):

@@ -9,6 +9,12 @@ launch file describing it):
 - **drake**: its ``<robot>`` declares Drake's namespace (``xmlns:drake="http://drake.mit.edu"``)
   or it writes Drake's elements (``<drake:proximity_properties>``): Drake's parser reads it
   (RobotLocomotion/models, package ``drake_models``, whose package.xml names no build tool);
+- **genesis**: it lies in the ``assets`` folder of the Genesis simulator's Python package
+  (a folder ``genesis`` with its ``__init__.py`` and ``utils/urdf.py``, the loader that reads
+  those assets with Genesis's fork of urdfpy), in Genesis or a copy of it (Genesis-arter):
+  a ``<limit>`` without effort or velocity is 0 there, a missing bound unbounded, a link
+  without ``<inertial>`` weighs its mesh's volume times the material's density (1 kg without a
+  mesh), and ``package://`` is the file's own folder;
 - **browser**: it lies in a web application's folder of files served as they are (``public``
   or ``static`` beside the application's ``package.json``), and a source file of that
   application names it there (mrover's web GUI, whose ``rover-model.ts`` fetches
@@ -48,7 +54,7 @@ _RUN = frozenset({"ros2_control", "controllers", "plugin", "launch"})
 
 
 class Reader(Frozen):
-    """A reader of a robot's file other than urdfdom: ``kind`` 'drake' or 'browser', and
+    """A reader of a robot's file other than urdfdom: ``kind`` 'drake', 'genesis' or 'browser', and
     ``why``: the evidence in words, as a finding's condition says it."""
 
     kind: str
@@ -76,6 +82,9 @@ def _reader(robot) -> Reader | None:
         drake = _drake(robot)
         if drake:
             return Reader("drake", f"Drake reads it: {drake}; {nothing_says_ros(robot)}")
+        genesis = _genesis(robot.path)
+        if genesis:
+            return Reader("genesis", f"Genesis reads it: {genesis}; {nothing_says_ros(robot)}")
     if any(e.kind in _RUN for e in evidence):
         return None
     served = _served(robot.path)
@@ -99,6 +108,24 @@ def _drake(robot) -> str | None:
     for element in root.iter():
         if isinstance(element.tag, str) and element.tag.startswith(marked):
             return f"it writes <drake:{element.tag[len(marked):]}>"
+    return None
+
+
+def _genesis(path: str) -> str | None:
+    """Where ``path`` lies in the Genesis simulator's assets, in words, or None: a folder
+    ``assets`` (at any depth above the file) of a package folder ``genesis`` holding
+    ``__init__.py`` and ``utils/urdf.py``, within the file's repository."""
+    folder = os.path.dirname(os.path.abspath(path))
+    root = os.path.abspath(containment_root(Path(folder)))
+    while folder.startswith(root.rstrip(os.sep) + os.sep):
+        package = os.path.dirname(folder)
+        if os.path.basename(folder) == "assets" and os.path.basename(package) == "genesis" \
+                and kind_of(os.path.join(package, "__init__.py")) == "file" \
+                and kind_of(os.path.join(package, "utils", "urdf.py")) == "file":
+            return (f"it lies in {display_path(folder)}, the assets of the Genesis package "
+                    f"whose {display_path(os.path.join(package, 'utils', 'urdf.py'))} loads "
+                    "them")
+        folder = package
     return None
 
 

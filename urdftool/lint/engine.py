@@ -301,6 +301,44 @@ def _recorded(path: str, options: CheckOptions, data: bytes | None) -> FileResul
     return result
 
 
+def _as_launched(robot, findings: list[Finding], options: CheckOptions, build) -> list[Finding]:
+    """``findings`` of ``robot``, built with its own argument defaults, when every launch
+    file of its repository builds it with other values
+    (:func:`~urdftool.description.runtime.built_otherwise`): an error that the first such build
+    (its arguments all known) does not have holds only for a plain ``xacro FILE``, so it is a
+    warning saying so (autonomous_excavator's launch files build its xacro with
+    ``use_nominal_extrinsics:=true``, which makes the camera frame a joint hangs from; with
+    the default ``false`` the joint names a link that does not exist, U105). An error that
+    build has too is an error; so is every one when no launch file builds the robot otherwise,
+    or that build fails. ``build(args)`` loads the robot with those arguments."""
+    from urdftool.description.runtime import built_otherwise
+    from urdftool.diagnostics import Severity
+
+    if not any(f.severity == Severity.ERROR for f in findings):
+        return findings
+    launched = next((made for made, _ in built_otherwise(robot)
+                     if made.args and all(v is not None for v in made.args.values())), None)
+    if launched is None:
+        return findings
+    try:
+        other = build(dict(launched.args))
+    except LoadError:
+        return findings
+    other.companion_paths, other.mesh_limits = robot.companion_paths, robot.mesh_limits
+    other.xacro_args = dict(launched.args)
+    other.rebuild = lambda more: build({**launched.args, **more})  # (as robot's: rules ask it)
+    there = {(f.code, f.file, f.line) for f in check_robot(other, options.selection)}
+    condition = (f"; that is the build with the robot's own argument defaults (a plain xacro "
+                 f"of the file): {launched.named} builds it with {launched.shown_args()}, "
+                 "which does not have it (--arg NAME=VALUE checks a build)")
+    return distinct_sorted([
+        Finding(f.code, f.name, Severity.WARNING, f.message + condition, f.location, f.fix,
+                f.target, f.not_checked, f.repeated, f.urdfdom_takes,
+                f.urdfdom_refuses or (f.code in URDFDOM_REFUSES and not f.urdfdom_takes))
+        if f.severity == Severity.ERROR and (f.code, f.file, f.line) not in there else f
+        for f in findings])
+
+
 def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> FileResult:
     from urdftool.description.load import load
 
@@ -352,6 +390,8 @@ def _load_and_check(path: str, options: CheckOptions, data: bytes | None) -> Fil
                                       max_file_size=options.max_file_size)
     with COLLECTION[1]():
         findings = check_robot(robot, options.selection)
+        if not options.xacro_args and data is None:
+            findings = _as_launched(robot, findings, options, build)
     if built and options.selection.allows(built[0].code):
         findings = sorted(set(findings) | set(built), key=Finding.sort_key)
     return FileResult(path, findings, robot, companions=_companion_lines(robot),

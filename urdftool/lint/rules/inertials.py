@@ -244,12 +244,15 @@ def moving_link_without_mass(robot):
     - **Pinocchio** reads it, and its mass matrix is singular (forward dynamics divides by
       zero).
     - A web page's viewer (three.js urdf-loader) reads no mass at all.
+    - **Genesis** (its assets, read by ``genesis/utils/urdf.py``) weighs a link without
+      ``<inertial>`` as its mesh's volume times the material's density, 1 kg without a mesh.
 
     So the finding is an error where a simulator may load the file (ROS's, or one nobody is
     known to read), and a warning naming the condition where the readers known take it
     (:mod:`urdftool.description.readers`): "if Gazebo or MuJoCo loads it" in a file only
     Drake reads, when a link below carries mass (a terminal massless body Drake refuses too:
-    an error there); "if a simulator loads it" in a web application's copy.
+    an error there), or in Genesis's assets when the link has no ``<inertial>``; "if a
+    simulator loads it" in a web application's copy.
     A massless frame fixed to a body with mass is fine.
 
     Only checked when the robot declares at least one ``<inertial>``: a description without any
@@ -282,6 +285,8 @@ def moving_link_without_mass(robot):
                                   for l in (robot.links.get(b) for b in body) if l is not None):
             what = "no <inertial>" if first_child(link, "inertial") is None else "zero mass"
             takers = {"browser": "a simulator"}  # (a web page's viewer reads no mass)
+            if what == "no <inertial>":  # Genesis weighs the link's mesh (1 kg without one)
+                takers["genesis"] = "Gazebo or MuJoCo"
             if name in _carried(robot):  # Drake's solver takes it: mass outboard
                 takers["drake"] = "Gazebo or MuJoCo"
             yield link, ReadersTake(f"link '{name}' is moved by joint "

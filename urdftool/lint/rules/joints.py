@@ -26,6 +26,8 @@ NUMERIC_FIELDS = tuple((tag, attribute, count) for tag in JOINT_NUMBER_PLACES
 # prismatic joint without <limit>, or a <limit> without effort or velocity: Drake (unbounded),
 # three.js urdf-loader (it reads lower and upper alone, 0 when missing)
 TAKEN_ELSEWHERE = frozenset({"drake", "browser"})
+# ... and a <limit> without effort or velocity: Genesis too (its urdfpy reads them as 0)
+EFFORT_TAKEN_ELSEWHERE = TAKEN_ELSEWHERE | {"genesis"}
 
 
 def _name(joint) -> str:
@@ -81,8 +83,9 @@ def limit_missing_effort_velocity(robot):
     """A ``<limit>`` lacks ``effort`` or ``velocity``.
 
     Both are required by the URDF specification; urdfdom refuses the joint without them.
-    A **warning** naming the condition in a file Drake or a web page reads (see U202): Drake
-    reads no effort or velocity as unbounded, three.js urdf-loader reads neither.
+    A **warning** naming the condition in a file Drake, a web page or Genesis reads (see U202;
+    Genesis: its own assets): Drake reads no effort or velocity as unbounded, three.js
+    urdf-loader reads neither, Genesis's urdfpy reads them as 0.
 
     Bad: ``<limit lower="0" upper="1"/>``
     Good: ``<limit lower="0" upper="1" effort="5" velocity="1"/>``
@@ -96,7 +99,7 @@ def limit_missing_effort_velocity(robot):
                    if text is None]
         if missing:
             yield limit, UrdfdomAlone(f"joint '{_name(joint)}': <limit> has no "
-                                      f"{' or '.join(missing)}", TAKEN_ELSEWHERE)
+                                      f"{' or '.join(missing)}", EFFORT_TAKEN_ELSEWHERE)
 
 
 def _bounds(robot, kind: str | None, limit, read: dict | None = None

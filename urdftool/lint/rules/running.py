@@ -39,7 +39,8 @@ def controllers_started_together(robot):
             if state not in ("certain", "conditional"):
                 continue
             how = ("through the same interfaces" if not ros1 else
-                   "(ROS 1's controller manager lets one controller claim a joint)")
+                   "(ROS 1's controller manager lets only one controller claim a joint, whatever "
+                   "its interface)")
             message = (f"{label(controller)} and {label(other)} both command "
                        f"{', '.join(joints)} {how}; the second to start is refused (resource "
                        "conflict): start one --inactive (ROS 2) or --stopped (ROS 1), or give "
