@@ -39,14 +39,15 @@ def test_moveit2_layouts_under_ros_parameters(tmp_path):
                  "head_controller:\n  ros__parameters:\n    joints: [head_joint]\n",
              "moveit_controllers.yaml":
                  "moveit_simple_controller_manager:\n  controller_names: [head_controller, neck]\n"
-                 "  head_controller:\n    type: FollowJointTrajectory\n    joints: [head_joint, cam_joint]\n"}
+                 "  head_controller:\n    type: FollowJointTrajectory\n    joints: [head_joint, cam_joint]\n"
+                 "    action_ns: follow_joint_trajectory\n"}
     found, findings = check_folder(tmp_path, files, select=("U81", "U601"))
     # the timeout, max_position (!degrees 360: 2 pi to rosparam and to ROS 2's MoveIt, whose
     # launch_param_builder reads the tag alike) and min_position, the neck controller without
-    # a block (the controllers family's U601: the file is among the robot's controller files),
-    # and cam_joint that ros_control does not drive
+    # a block (U812 too where the file is among the robot's controller files: MoveIt's lists
+    # have one reader, moveit_config's, and one rule), and cam_joint that ros_control does not drive
     assert found == [("joint_limits.yaml", 5, "U816"), ("joint_limits.yaml", 6, "U816"),
-                     ("kinematics.yaml", 6, "U812"), ("moveit_controllers.yaml", 2, "U601"),
+                     ("kinematics.yaml", 6, "U812"), ("moveit_controllers.yaml", 2, "U812"),
                      ("moveit_controllers.yaml", 5, "U818")]
     assert "6.28319 is above" in findings[0].message and "adds cam_joint" in findings[4].message
 
@@ -55,7 +56,7 @@ def test_a_gripper_command_controller_may_list_the_mimicking_finger(tmp_path):
     files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
              "config/c.yaml": "grip:\n  type: position_controllers/GripperActionController\n  joint: head_joint\n",
              "ros_controllers.yaml": "controller_list:\n  - name: grip\n    type: GripperCommand\n"
-                                     "    joints: [head_joint, cam_joint]\n"}
+                                     "    action_ns: gripper_cmd\n    joints: [head_joint, cam_joint]\n"}
     assert check_folder(tmp_path, files, select=("U81",))[0] == []
 
 

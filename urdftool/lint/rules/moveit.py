@@ -75,6 +75,15 @@ def malformed_moveit_config(robot):
     know (``max_velocty``), and with ``has_velocity_limits: true`` and no ``max_velocity`` it
     plans without the limit the file meant to set.
 
+    MoveIt's controller list is read wherever it is, beside the SRDF or in the controller YAML
+    the robot is checked with, as moveit_simple_controller_manager reads it (see
+    :func:`urdftool.description.moveit_config.moveit_controllers`): MoveIt skips a controller
+    that lacks ``action_ns``, ``type`` or a ``joints:`` list of names (MoveIt 2: a non-empty
+    one), or that ``controller_names`` lists without its mapping beside the list; it reads no
+    list that is not a list. A note when the file names a ``moveit_controller_manager`` that
+    reads no list (moveit_ros_control_interface's, which asks the controller manager). A
+    ``type`` MoveIt does not know is U606's.
+
     Bad: ``kinematics_solver_timeout: fast``; ``max_velocty: 1.0``;
     ``controller_names: [arm_controller]`` without an ``arm_controller:`` block
     Good: ``kinematics_solver_timeout: 0.005``; ``max_velocity: 1.0``
@@ -84,10 +93,15 @@ def malformed_moveit_config(robot):
         read.append(file)
         for line, message in problems:
             yield file.at(line), message
-    beside_srdf = companions(robot).moveit_controllers
     for file, line, message in _moveit_controllers(robot)[1]:
-        if any(file is other for other in beside_srdf):  # the others: U601 (controllers family)
-            yield file.at(line), message
+        plugin = moveit.controller_manager(file)
+        if plugin is not None and not moveit.reads_list(plugin[0]):
+            message = Conditional(f"{file.display} names moveit_controller_manager {plugin[0]} "
+                                  "(which asks the controller manager and reads no list); if "
+                                  "MoveIt's simple controller manager is given it: " + message,
+                                  Severity.INFO)
+        yield file.at(line), message
+    beside_srdf = companions(robot).moveit_controllers
     for file in beside_srdf:
         if file.problem:
             yield file.at(file.line), file.problem
