@@ -108,7 +108,7 @@ def test_each_layout_moveit_reads_is_read_without_a_problem(tmp_path, text):
     ("controller_names: [arm]\narm: {action_ns: x, type: FollowJointTrajectory, joints: []}\n",
      [(2, "empty joints list")]),
     ("moveit_simple_controller_manager: [arm]\n", [(1, "needs a 'controller_names:' list")]),
-    ("moveit_simple_controller_manager:\n  arm: {action_ns: x}\n", [(2, "needs a 'controller_names:' list")]),
+    ("moveit_simple_controller_manager:\n  arm: {action_ns: x}\n", [(1, "needs a 'controller_names:' list")]),
 ])
 def test_each_shape_moveit_refuses_is_a_problem_at_its_line(tmp_path, text, expected):
     _, problems = _read_list(tmp_path, text)
@@ -119,14 +119,18 @@ def test_each_shape_moveit_refuses_is_a_problem_at_its_line(tmp_path, text, expe
 
 def test_an_entry_moveit_skips_is_still_read_for_its_name_and_joints(tmp_path):
     """What else is wrong with a controller (its joints not URDF joints) is still said."""
-    entries, problems = _read_list(tmp_path, "controller_list:\n  - {name: arm, joints: [a]}\n")
+    entries, problems = _read_list(tmp_path, "controller_list:\n  - {name: arm, type: FollowJointTrajectory, "
+                                             "joints: [a]}\n")
     assert [(name, joints) for name, _, _, joints, _ in entries] == [("arm", ["a"])]
     assert [line for line, _ in problems] == [2]
 
 
-def test_the_fake_controller_managers_list_needs_only_names_and_joints(tmp_path):
-    text = ("moveit_controller_manager: moveit_fake_controller_manager/MoveItFakeControllerManager\n"
-            "controller_list:\n  - {name: fake_arm, type: interpolate, joints: [a]}\n")
+@pytest.mark.parametrize("text", [
+    "moveit_controller_manager: moveit_fake_controller_manager/MoveItFakeControllerManager\n"
+    "controller_list:\n  - {name: fake_arm, type: FollowJointTrajectory, joints: [a]}\n",
+    "controller_list:\n  - {name: fake_arm, type: interpolate, joints: [a]}\n  - {name: b, joints: [c]}\n",
+])
+def test_the_fake_controller_managers_list_needs_only_names_and_joints(tmp_path, text):
     assert _read_list(tmp_path, text)[1] == []
 
 
@@ -153,3 +157,13 @@ def test_controller_manager_names_the_plugin_and_whether_it_reads_a_list(tmp_pat
     assert plugin == ("moveit_ros_control_interface/Ros2ControlManager", 1)
     assert not reads_list(plugin[0])
     assert reads_list("moveit_simple_controller_manager/MoveItSimpleControllerManager")
+
+
+def test_another_nodes_controller_names_is_not_moveits(tmp_path):
+    """MoveIt reads moveit_simple_controller_manager.controller_names: a joystick node's list
+    of the controllers it switches between, or MoveIt Task Constructor's, is theirs."""
+    assert _read_list(tmp_path, """\
+        joy_util_node:
+          ros__parameters:
+            controller_names: [neural_controller, forward_position_controller]
+        """) == ([], [])

@@ -279,6 +279,21 @@ def reads_list(plugin: str) -> bool:
     return "ros_control_interface" not in plugin and "Ros2ControlManager" not in plugin
 
 
+# The types of MoveIt 1's fake controller manager (moveit_fake_controllers: its execution
+# types; none is interpolate), or one a launch argument sets (fake_execution_type).
+FAKE_TYPES = ("", "interpolate", "last point", "via points")
+
+
+def fake_list(listed) -> bool:
+    """Whether a ``controller_list`` is MoveIt 1's fake controller manager's (the Setup
+    Assistant's ``fake_controllers.yaml``): entries that name no ``action_ns`` and a fake
+    execution type or none. That manager reads ``name`` and ``joints`` only."""
+    return isinstance(listed, list) and all(
+        isinstance(e, dict) and "action_ns" not in e
+        and (str(e.get("type", "")) in FAKE_TYPES or "$(" in str(e.get("type", "")))
+        for e in listed)
+
+
 def moveit_controllers(file: YamlFile) -> tuple[list[ControllerEntry], list[tuple[int, str]]]:
     """MoveIt's controllers in ``file``, read as moveit_simple_controller_manager reads them, and
     the file's problems (what makes MoveIt skip a controller or the whole list), both located.
@@ -290,10 +305,14 @@ def moveit_controllers(file: YamlFile) -> tuple[list[ControllerEntry], list[tupl
       ("name, joints, action_ns, and type must be specifed for each controller"); each must be
       a string but ``joints``, a list of strings (MoveIt's XmlRpc casts throw otherwise); a
       ``default`` must be true or false. The fake controller manager's list (``fake`` in the
-      file's ``moveit_controller_manager``) needs only ``name`` and ``joints``.
+      file's ``moveit_controller_manager``, a ``fake_*.yaml`` file as the Setup Assistant writes
+      it, or :func:`fake_list`) needs only ``name`` and ``joints``.
     - MoveIt 2, ``controller_names: [NAME, ...]`` beside one ``NAME: {action_ns, type, joints,
-      default}`` mapping per name (under ``moveit_simple_controller_manager:``, at the top of a
-      file a launch file loads into that namespace, or in a node's ``ros__parameters``): the
+      default}`` mapping per name, where MoveIt reads it (``moveit_simple_controller_manager.
+      controller_names``): under ``moveit_simple_controller_manager:`` (at any depth: a node's
+      ``ros__parameters``), or at the top of a file a launch file loads into that namespace
+      (another node's ``controller_names``, a joystick's or MoveIt Task Constructor's, is not
+      MoveIt's list): the
       names must be strings; a name without its mapping, ``action_ns`` or ``type`` is skipped,
       and so is one whose ``joints`` is not a non-empty list of strings ("No joints specified").
 
@@ -301,27 +320,26 @@ def moveit_controllers(file: YamlFile) -> tuple[list[ControllerEntry], list[tupl
     joints and name are still compared by the rules); what MoveIt refuses is a problem.
     """
     if file.problem or not isinstance(file.data, YamlMap):
-        return [], []  # a broken file is reported as the file's (U601, U812)
+        return [], []  # a broken file is said as the file itself (the rules read file.problem)
     plugin = controller_manager(file)
-    fake = plugin is not None and "fake" in plugin[0].lower()
+    fake = file.path.name.startswith("fake_") or plugin is not None and "fake" in plugin[0].lower()
     entries, problems, seen = [], [], set()
 
-    def walk(node, depth):
+    def walk(node, depth, key=None):
         if not isinstance(node, YamlMap) or id(node) in seen or depth > _LIST_DEPTH:
             return
         seen.add(id(node))
         if "controller_list" in node:
             _moveit1(file, node, fake, entries, problems)
-        if "controller_names" in node:
-            _moveit2(file, node, entries, problems)
+        if "controller_names" in node and (depth == 0 or key == "moveit_simple_controller_manager"):
+            _moveit2(file, node, entries, problems)  # (another node's controller_names is its own)
         manager = node.get("moveit_simple_controller_manager")
         if "moveit_simple_controller_manager" in node and not (
                 isinstance(manager, YamlMap) and "controller_names" in manager):
-            problems.append((manager.line if isinstance(manager, YamlMap) and manager.line
-                             else node.lines["moveit_simple_controller_manager"],
+            problems.append((node.lines["moveit_simple_controller_manager"],
                              "moveit_simple_controller_manager needs a 'controller_names:' list"))
-        for value in node.values():
-            walk(value, depth + 1)
+        for name, value in node.items():
+            walk(value, depth + 1, name)
 
     walk(file.data, 0)
     problems.sort(key=lambda problem: problem[0])
@@ -368,7 +386,7 @@ def _moveit1(file, holder: YamlMap, fake: bool, entries: list, problems: list) -
         problems.append((holder.lines["controller_list"], "controller_list must be a list of "
                          "{name, action_ns, type, joints}"))
         return
-    required = ("joints",) if fake else ("joints", "action_ns", "type")
+    required = ("joints",) if fake or fake_list(listed) else ("joints", "action_ns", "type")
     for block, line in zip(listed, listed.lines):
         if not isinstance(block, YamlMap) or not isinstance(block.get("name"), str):
             problems.append((line, "each controller_list entry needs a 'name:'"))
