@@ -374,3 +374,24 @@ def test_false_adjacent_entries_walk_the_tree_once_not_once_each(tmp_path, monke
     assert [code for _, _, code in found] == ["U822"] * 500
     assert all("3 joints apart" in finding.message for finding in findings)
     assert len(built) <= 3
+
+
+@pytest.mark.parametrize("manager, severity", [
+    ("", "error"),
+    ("moveit_controller_manager: moveit_simple_controller_manager/MoveItSimpleControllerManager\n",
+     "error"),
+    # moveit_ros_control_interface asks the controller manager and reads no list: a note
+    ("moveit_controller_manager: moveit_ros_control_interface/Ros2ControlManager\n", "info"),
+])
+def test_a_moveit_list_among_the_controllers_is_u812s_wherever_it_is(tmp_path, manager, severity):
+    """MoveIt's list in the controller YAML beside the robot (no SRDF beside it) is read by the
+    one reader, and its problems are U812's, not U601's nor nobody's."""
+    files = {"robot.urdf": ROBOT, "config/controllers.yaml": manager + (
+        "moveit_simple_controller_manager:\n  controller_names: [head_controller]\n"
+        "  head_controller:\n    type: FollowJointTrajectory\n    joints: [head_joint]\n")}
+    found, findings = check_folder(tmp_path, files, select=("U6", "U8"),
+                                   controllers=[str(tmp_path / "config/controllers.yaml")])
+    line = 3 + bool(manager)
+    assert found == [("controllers.yaml", line, "U812")], [f.message for f in findings]
+    assert findings[0].severity.value == severity
+    assert "'head_controller' has no action_ns" in findings[0].message
