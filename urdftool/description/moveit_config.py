@@ -228,7 +228,8 @@ class ControllerEntry(Record):
     """A controller of MoveIt's controller list: its name, type and joints as written, where.
 
     type: "" when not written; joints: (name, line) of each name the ``joints:`` list holds;
-    block: its mapping (the list's entry, or the ``NAME:`` mapping controller_names points to).
+    block: its mapping (the list's entry, or the ``NAME:`` mapping controller_names points to);
+    ros: the MoveIt that reads its list (1: ``controller_list``; 2: ``controller_names``).
     """
 
     file: YamlFile
@@ -240,13 +241,14 @@ class ControllerEntry(Record):
     action_ns: str | None  # None when not written
     action_line: int
     block: YamlMap | None
+    ros: int
 
     __slots__ = ("file", "name", "line", "type", "joints", "joints_line", "action_ns",
-                 "action_line", "block")
+                 "action_line", "block", "ros")
 
     def __init__(self, file: YamlFile, name: str, line: int, type: str, joints: list = NEW,
                  joints_line: int = 0, action_ns: str | None = None, action_line: int = 0,
-                 block: YamlMap | None = None) -> None:
+                 block: YamlMap | None = None, ros: int = 1) -> None:
         self.file = file
         self.name = name
         self.line = line
@@ -256,6 +258,7 @@ class ControllerEntry(Record):
         self.action_ns = action_ns
         self.action_line = action_line
         self.block = block
+        self.ros = ros
 
 
 # How deep in a file a controller list is looked for: a launch file may load the file in any
@@ -377,7 +380,7 @@ def _entry(file, name: str, block: YamlMap, line: int, required: tuple, ros: int
     return ControllerEntry(file, name, line, str(block.get("type", "")),
                            [(j, at) for j, at in zip(joints, joints.lines) if isinstance(j, str)],
                            block.lines["joints"], None if action is None else str(action),
-                           block.lines.get("action_ns", line), block)
+                           block.lines.get("action_ns", line), block, ros)
 
 
 def _moveit1(file, holder: YamlMap, fake: bool, entries: list, problems: list) -> None:
@@ -427,10 +430,11 @@ def _elsewhere(data: YamlMap, name: str, manager: YamlMap) -> str:
     return ""
 
 
-def ros_control_controllers(files) -> dict[str, set[str]]:
+def ros_control_controllers(files, ros: int | None = None) -> dict[str, set[str]]:
     """The ros_control controllers declared in ``files`` (a mapping with ``type: pkg/Class``,
     ROS 1; or its ``NAME: ros__parameters:`` block, ROS 2), by name, with their joints
-    (``joints:`` or ``joint:``). MoveIt's own lists are skipped."""
+    (``joints:`` or ``joint:``). MoveIt's own lists are skipped. ``ros``: only those of ROS 2
+    parameter files (2) or of the others (1), the controllers a MoveIt of that ROS meets."""
     declared: dict[str, set[str]] = {}
     parameters: dict[str, set[str]] = {}
 
@@ -454,6 +458,6 @@ def ros_control_controllers(files) -> dict[str, set[str]]:
             walk(value, depth + 1)
 
     for file in files:
-        if file.problem is None:
+        if file.problem is None and (ros is None or file.ros2 == (ros == 2)):
             walk(file.data, 0)
     return {name: joints | parameters.get(name, set()) for name, joints in declared.items()}

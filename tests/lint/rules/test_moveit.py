@@ -395,3 +395,21 @@ def test_a_moveit_list_among_the_controllers_is_u812s_wherever_it_is(tmp_path, m
     assert found == [("controllers.yaml", line, "U812")], [f.message for f in findings]
     assert findings[0].severity.value == severity
     assert "'head_controller' has no action_ns" in findings[0].message
+
+
+@pytest.mark.parametrize("controllers, found", [
+    # ROS 2's ros2_control serves MoveIt 2's list: its controllers are compared
+    ("controller_manager:\n  ros__parameters:\n    arm:\n"
+     "      type: joint_trajectory_controller/JointTrajectoryController\n", True),
+    # a ROS 1 file beside it (a Setup Assistant's leftover ros_controllers.yaml) serves no MoveIt 2
+    ("arm:\n  type: position_controllers/JointTrajectoryController\n  joints: [head_joint]\n", False),
+])
+def test_moveit2s_list_meets_ros2_controllers_only(tmp_path, controllers, found):
+    """rokae_ros2's xMatePro3 MoveIt 2 list (controller_names at the top of a file its launch
+    loads into moveit_simple_controller_manager) beside a ROS 1 ros_controllers.yaml: no U817."""
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF, "config/c.yaml": controllers,
+             "moveit_controllers.yaml": "controller_names: [head_controller]\nhead_controller:\n"
+                                        "  action_ns: follow_joint_trajectory\n  type: FollowJointTrajectory\n"
+                                        "  joints: [head_joint]\n"}
+    codes = [code for _, _, code in check_folder(tmp_path, files, select=("U817",))[0]]
+    assert codes == (["U817"] if found else [])

@@ -281,8 +281,11 @@ def _rounded(written: float, urdf: float) -> bool:
     return round(urdf, len(text.split(".")[1])) == written
 
 
-def _ros_control(robot) -> dict[str, set[str]]:
-    return robot.memo(_ros_control, lambda: moveit.ros_control_controllers(_controller_files(robot)))
+def _ros_control(robot, ros: int) -> dict[str, set[str]]:
+    """The ros_control controllers a MoveIt of ROS ``ros`` meets (MoveIt 2's list is served by
+    ros2_control's controllers, MoveIt 1's by ros_control's), by name, with their joints."""
+    return robot.memo_for(_ros_control, ros, lambda: moveit.ros_control_controllers(
+        _controller_files(robot), ros))
 
 
 def _remaps(robot, entry) -> list:
@@ -309,7 +312,9 @@ def moveit_controller_unknown(robot):
 
     MoveIt sends each trajectory to ``<name>/<action_ns>``; with no such controller running,
     execution fails ("Action client not connected"). Checked only when ros_control controllers
-    are declared in the YAML the robot is checked with (a namespace before the name is ignored).
+    are declared in the YAML the robot is checked with (a namespace before the name is ignored),
+    of MoveIt's ROS: MoveIt 2's ``controller_names`` against ROS 2 parameter files, MoveIt 1's
+    ``controller_list`` against the others.
 
     A MoveIt configuration is often written for the real robot, whose driver serves the
     trajectory action itself (ur_robot_driver's scaled_pos_joint_traj_controller, kortex_driver's
@@ -331,12 +336,10 @@ def moveit_controller_unknown(robot):
     ``arm_trajectory_controller``
     Good: the same name in both
     """
-    declared = _ros_control(robot)
-    if not declared:
-        return
     for entry in _moveit_controllers(robot)[0]:
+        declared = _ros_control(robot, entry.ros)
         name = entry.name.strip("/").split("/")[-1]
-        if not name:  # MoveIt sends to ``/<action_ns>`` itself: a driver's, never ros_control's
+        if not name or not declared:  # MoveIt sends to ``/<action_ns>`` itself: a driver's
             continue
         if name not in declared:
             message = (f"MoveIt controller '{entry.name}' is not a ros_control controller of this "
@@ -382,8 +385,8 @@ def moveit_controller_joints(robot):
     Bad: MoveIt ``joints: [j1, j2, j3]`` for a controller with ``joints: [j1, j2]``
     Good: the same joints (in any order)
     """
-    declared = _ros_control(robot)
     for entry in _moveit_controllers(robot)[0]:
+        declared = _ros_control(robot, entry.ros)
         name = entry.name.strip("/").split("/")[-1]
         remap = next((r for r in _remaps(robot, entry) if r.controller in declared), None) \
             if declared else None
