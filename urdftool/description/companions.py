@@ -65,6 +65,7 @@ from urdftool.description.documents import SrdfFile, YamlFile, read_srdf, read_y
 from urdftool.description.files import MANIFESTS, inside, kind_of, listing, read_regular, \
     real_path, walk
 from urdftool.description.launch import named as launch_named
+from urdftool.description.moveit_config import fake_list
 from urdftool.description.packages import SKIP_DIRS, containment_root
 from urdftool.description.urdf import ROBOT_GLOB
 from urdftool.description.run_memo import per_run
@@ -282,9 +283,6 @@ def is_moveit_controllers(data) -> bool:
                if isinstance(value, dict))
 
 
-_FAKE_TYPES = ("", "interpolate", "last point", "via points")  # or a $(arg ...) set at launch
-
-
 def is_fake_controller_list(data) -> bool:
     """MoveIt's fake controller manager's list (``fake_controllers.yaml``): a
     ``controller_list`` whose entries name no ``action_ns`` and no simple controller manager
@@ -295,11 +293,7 @@ def is_fake_controller_list(data) -> bool:
             {key: value for key, value in data.items() if key != "controller_list"}) or \
             "fake" not in str(data.get("moveit_controller_manager", "fake")).lower():
         return False
-    entries = data.get("controller_list")
-    return isinstance(entries, list) and all(
-        isinstance(e, dict) and "action_ns" not in e
-        and (str(e.get("type", "")) in _FAKE_TYPES or "$(" in str(e.get("type", "")))
-        for e in entries)
+    return fake_list(data.get("controller_list"))
 
 
 def users_below(companion: Path) -> Path:

@@ -14,11 +14,9 @@ Layouts read (a file may hold several):
 - **ROS 1** (``ros1``; rosparam): any mapping ``NAME: {type: pkg/Class, ...}`` at any depth
   (the keys above it are its namespace), or a file that is one controller (top-level
   ``type:``; named after the file).
-- **MoveIt** (``moveit``): MoveIt 1's ``controller_list: [{name, type, joints}]``; MoveIt 2's
-  moveit_simple_controller_manager ``controller_names: [...]`` beside one mapping per listed
-  controller (``{type: FollowJointTrajectory, action_ns, default, joints}``), at the top of
-  the file (launch files pass it as the ``moveit_simple_controller_manager`` namespace), under
-  ``moveit_simple_controller_manager:``, or inside a node's ``ros__parameters``.
+- **MoveIt** (``moveit``): the controllers of MoveIt's lists (MoveIt 1's ``controller_list``,
+  MoveIt 2's ``controller_names``), as :func:`urdftool.description.moveit_config.
+  moveit_controllers` reads them: each with a name and a ``joints:`` list.
 
 Reading only: whether a name is a URDF joint or a class exists is the rules' business.
 """
@@ -29,6 +27,7 @@ from __future__ import annotations
 from urdftool.description.companions import companions
 from urdftool.description.controller_classes import MOVEIT_TYPES, ControllerClass, lookup
 from urdftool.description.documents import YamlFile, YamlList, YamlMap, merged
+from urdftool.description.moveit_config import moveit_controllers
 from urdftool.records import NEW, Record
 
 WILDCARDS = ("*", "**")
@@ -58,7 +57,7 @@ class Controller(Record):
     layout: "ros1", "ros2" or "moveit"
     line: where its ``type`` is (or its entry, for MoveIt)
     params: the parameters it reads (ROS 2: the wildcard blocks' merged with its own block;
-        ROS 1 and MoveIt: its mapping); None for a name MoveIt lists with no mapping
+        ROS 1 and MoveIt: its mapping)
     block_line: ROS 2: the line of its own ``NAME: ros__parameters:`` block, None without one
     namespace: the keys above it ("/"-joined; ROS 2: its node's namespace)
     own: ROS 2: the parameters of its own block alone (``params`` without the wildcard
@@ -402,35 +401,14 @@ def _ros1(file: YamlFile, skip: set[int]) -> list[Controller]:
 # --- MoveIt -------------------------------------------------------------------------------
 
 def _moveit(file: YamlFile, entries: set[int]) -> list[Controller]:
-    """MoveIt's controller_list and controller_names layouts, wherever in the file they are;
-    the id of each entry's mapping is added to ``entries``."""
-    found, seen = [], set()
-
-    def walk(node, depth):
-        if not isinstance(node, YamlMap) or id(node) in seen or depth > _MAX_DEPTH:
-            return
-        seen.add(id(node))
-        listed = node.get("controller_list")
-        if isinstance(listed, YamlList):
-            for entry, line in zip(listed, listed.lines):
-                if isinstance(entry, YamlMap):
-                    entries.add(id(entry))
-                    found.append(Controller(file, str(entry.get("name", "?")), str(entry.get("type", "")),
-                                            line, "moveit", params=entry))
-        names = node.get("controller_names")
-        if isinstance(names, YamlList):
-            for name, line in zip(names, names.lines):
-                entry = node.get(name) if isinstance(name, str) else None
-                if isinstance(entry, YamlMap):
-                    entries.add(id(entry))
-                    found.append(Controller(file, name, str(entry.get("type", "")),
-                                            node.lines.get(name, line), "moveit", params=entry))
-                else:
-                    found.append(Controller(file, str(name), "", line, "moveit"))
-        for value in node.values():
-            walk(value, depth + 1)
-
-    walk(file.data, 0)
+    """MoveIt's controllers, as :func:`urdftool.description.moveit_config.moveit_controllers`
+    reads them (the one reader of MoveIt's lists; their problems are its); the id of each
+    entry's mapping is added to ``entries``."""
+    found = []
+    for entry in moveit_controllers(file)[0]:
+        entries.add(id(entry.block))
+        found.append(Controller(file, entry.name, entry.type, entry.line, "moveit",
+                                params=entry.block))
     return found
 
 

@@ -11,7 +11,9 @@ parameter files are written):
 - joint limits: ``joint_limits: {JOINT: {has_velocity_limits: true, max_velocity: ...}}``, also
   under ``robot_description_planning:`` (MoveIt 2);
 - controllers: MoveIt 1 ``controller_list: [{name, action_ns, type, joints}]``; MoveIt 2
-  ``moveit_simple_controller_manager: {controller_names: [...], NAME: {type, joints}}``.
+  ``moveit_simple_controller_manager: {controller_names: [...], NAME: {action_ns, type,
+  joints}}``; the one reader of MoveIt's lists (:func:`moveit_controllers`), wherever in a file
+  they are (the controllers of :mod:`urdftool.description.controllers` are its entries).
 
 Reading only: each reader returns entries and the file's problems as (line, message); what is
 wrong against the URDF or the SRDF is the rules' business.
@@ -223,7 +225,12 @@ def _limit_problems(entry: LimitEntry, limits: YamlMap) -> list[tuple[int, str]]
 # --- MoveIt's controller list and the ros_control controllers --------------------------------
 
 class ControllerEntry(Record):
-    """A controller MoveIt sends to: its name, type and joints as written, where."""
+    """A controller of MoveIt's controller list: its name, type and joints as written, where.
+
+    type: "" when not written; joints: (name, line) of each name the ``joints:`` list holds;
+    block: its mapping (the list's entry, or the ``NAME:`` mapping controller_names points to);
+    ros: the MoveIt that reads its list (1: ``controller_list``; 2: ``controller_names``).
+    """
 
     file: YamlFile
     name: str
@@ -233,12 +240,15 @@ class ControllerEntry(Record):
     joints_line: int
     action_ns: str | None  # None when not written
     action_line: int
+    block: YamlMap | None
+    ros: int
 
     __slots__ = ("file", "name", "line", "type", "joints", "joints_line", "action_ns",
-                 "action_line")
+                 "action_line", "block", "ros")
 
     def __init__(self, file: YamlFile, name: str, line: int, type: str, joints: list = NEW,
-                 joints_line: int = 0, action_ns: str | None = None, action_line: int = 0) -> None:
+                 joints_line: int = 0, action_ns: str | None = None, action_line: int = 0,
+                 block: YamlMap | None = None, ros: int = 1) -> None:
         self.file = file
         self.name = name
         self.line = line
@@ -247,79 +257,184 @@ class ControllerEntry(Record):
         self.joints_line = joints_line
         self.action_ns = action_ns
         self.action_line = action_line
+        self.block = block
+        self.ros = ros
+
+
+# How deep in a file a controller list is looked for: a launch file may load the file in any
+# namespace (``<rosparam ns="move_group">``), so the keys above a list are its namespace.
+_LIST_DEPTH = 12
+
+
+def controller_manager(file: YamlFile) -> tuple[str, int] | None:
+    """(plugin, line) of the ``moveit_controller_manager:`` ``file`` names (at the top, or under
+    a node's ``ros__parameters``), None without one: the plugin that reads MoveIt's list."""
+    holder = section(file.data, "moveit_controller_manager", 2)
+    if holder is None or not isinstance(holder["moveit_controller_manager"], str):
+        return None
+    return holder["moveit_controller_manager"], holder.lines["moveit_controller_manager"]
+
+
+def reads_list(plugin: str) -> bool:
+    """Whether MoveIt's controller manager plugin ``plugin`` reads a controller list: the simple
+    controller manager does (and MoveIt 1's fake one, its ``name`` and ``joints``);
+    moveit_ros_control_interface's managers ask the controller manager instead."""
+    return "ros_control_interface" not in plugin and "Ros2ControlManager" not in plugin
+
+
+# The types of MoveIt 1's fake controller manager (moveit_fake_controllers: its execution
+# types; none is interpolate), or one a launch argument sets (fake_execution_type).
+FAKE_TYPES = ("", "interpolate", "last point", "via points")
+
+
+def fake_list(listed) -> bool:
+    """Whether a ``controller_list`` is MoveIt 1's fake controller manager's (the Setup
+    Assistant's ``fake_controllers.yaml``): entries that name no ``action_ns`` and a fake
+    execution type or none. That manager reads ``name`` and ``joints`` only."""
+    return isinstance(listed, list) and all(
+        isinstance(e, dict) and "action_ns" not in e
+        and (str(e.get("type", "")) in FAKE_TYPES or "$(" in str(e.get("type", "")))
+        for e in listed)
 
 
 def moveit_controllers(file: YamlFile) -> tuple[list[ControllerEntry], list[tuple[int, str]]]:
-    """MoveIt's controllers in ``file`` (none when it has no controller list), and problems."""
-    if file.problem:
-        return [], []  # a broken controller file is reported with the controllers (U6xx)
-    holder = section(file.data, "controller_list", 2)
-    if holder is not None:
-        return _moveit1(file, holder)
-    holder = section(file.data, "moveit_simple_controller_manager", 2)
-    if holder is not None:
-        return _moveit2(file, holder)
-    return [], []
+    """MoveIt's controllers in ``file``, read as moveit_simple_controller_manager reads them, and
+    the file's problems (what makes MoveIt skip a controller or the whole list), both located.
+
+    Every list in the file is read (the keys above one are the namespace it is loaded in):
+
+    - MoveIt 1, ``controller_list: [{name, action_ns, type, joints, default}]``: the list must be a
+      list; an entry lacking any of ``name``, ``joints``, ``action_ns`` and ``type`` is skipped
+      ("name, joints, action_ns, and type must be specifed for each controller"); each must be
+      a string but ``joints``, a list of strings (MoveIt's XmlRpc casts throw otherwise); a
+      ``default`` must be true or false. The fake controller manager's list (``fake`` in the
+      file's ``moveit_controller_manager``, a ``fake_*.yaml`` file as the Setup Assistant writes
+      it, or :func:`fake_list`) needs only ``name`` and ``joints``.
+    - MoveIt 2, ``controller_names: [NAME, ...]`` beside one ``NAME: {action_ns, type, joints,
+      default}`` mapping per name, where MoveIt reads it (``moveit_simple_controller_manager.
+      controller_names``): under ``moveit_simple_controller_manager:`` (at any depth: a node's
+      ``ros__parameters``), or at the top of a file a launch file loads into that namespace
+      (another node's ``controller_names``, a joystick's or MoveIt Task Constructor's, is not
+      MoveIt's list): the
+      names must be strings; a name without its mapping, ``action_ns`` or ``type`` is skipped,
+      and so is one whose ``joints`` is not a non-empty list of strings ("No joints specified").
+
+    An entry is returned when it has a name and a ``joints:`` list, whatever else it lacks (its
+    joints and name are still compared by the rules); what MoveIt refuses is a problem.
+    """
+    if file.problem or not isinstance(file.data, YamlMap):
+        return [], []  # a broken file is said as the file itself (the rules read file.problem)
+    plugin = controller_manager(file)
+    fake = file.path.name.startswith("fake_") or plugin is not None and "fake" in plugin[0].lower()
+    entries, problems, seen = [], [], set()
+
+    def walk(node, depth, key=None):
+        if not isinstance(node, YamlMap) or id(node) in seen or depth > _LIST_DEPTH:
+            return
+        seen.add(id(node))
+        if "controller_list" in node:
+            _moveit1(file, node, fake, entries, problems)
+        if "controller_names" in node and (depth == 0 or key == "moveit_simple_controller_manager"):
+            _moveit2(file, node, entries, problems)  # (another node's controller_names is its own)
+        manager = node.get("moveit_simple_controller_manager")
+        if "moveit_simple_controller_manager" in node and not (
+                isinstance(manager, YamlMap) and "controller_names" in manager):
+            problems.append((node.lines["moveit_simple_controller_manager"],
+                             "moveit_simple_controller_manager needs a 'controller_names:' list"))
+        for name, value in node.items():
+            walk(value, depth + 1, name)
+
+    walk(file.data, 0)
+    problems.sort(key=lambda problem: problem[0])
+    return entries, problems
 
 
-def _entry(file, name, block: YamlMap, line) -> tuple[ControllerEntry | None, list]:
+def _entry(file, name: str, block: YamlMap, line: int, required: tuple, ros: int,
+           problems: list) -> ControllerEntry | None:
+    """The entry of controller ``name`` (None without a ``joints:`` list), its problems added."""
+    where = f"MoveIt controller '{name}'"
+    missing = [key for key in required if key not in block]
+    if missing:
+        problems.append((line, f"{where} has no {' and no '.join(missing)}: MoveIt's simple "
+                         "controller manager skips it" + (
+                             " (it needs name, joints, action_ns and type)" if ros == 1 else "")))
+    for key in ("action_ns", "type"):
+        if key in block and not isinstance(block[key], str):
+            problems.append((block.lines[key], f"{where}: {key} '{block[key]}' must be a string"))
+    if "default" in block and not isinstance(block["default"], bool):
+        problems.append((block.lines["default"], f"{where}: default '{block['default']}' must be "
+                         "true or false"))
     joints = block.get("joints")
     if not isinstance(joints, YamlList):
-        return None, [(block.lines.get("joints", line), f"MoveIt controller '{name}' needs a "
-                       "'joints:' list")]
+        if "joints" in block:
+            problems.append((block.lines["joints"], f"MoveIt controller '{name}' needs a "
+                             "'joints:' list"))
+        return None
+    if ros == 2 and not joints:
+        problems.append((block.lines["joints"], f"{where} has an empty joints list: MoveIt's "
+                         "simple controller manager skips it (\"No joints specified\")"))
+    for joint, at in zip(joints, joints.lines):
+        if not isinstance(joint, str):
+            problems.append((at, f"{where}: joint '{joint}' must be a joint's name"))
     action = block.get("action_ns")
-    entry = ControllerEntry(file, str(name), line, str(block.get("type", "")),
-                            [(str(j), at) for j, at in zip(joints, joints.lines)],
-                            block.lines["joints"], None if action is None else str(action),
-                            block.lines.get("action_ns", line))
-    return entry, []
+    return ControllerEntry(file, name, line, str(block.get("type", "")),
+                           [(j, at) for j, at in zip(joints, joints.lines) if isinstance(j, str)],
+                           block.lines["joints"], None if action is None else str(action),
+                           block.lines.get("action_ns", line), block, ros)
 
 
-def _moveit1(file, holder) -> tuple[list[ControllerEntry], list]:
+def _moveit1(file, holder: YamlMap, fake: bool, entries: list, problems: list) -> None:
     listed = holder["controller_list"]
     if not isinstance(listed, YamlList):
-        return [], [(holder.lines["controller_list"], "controller_list must be a list of "
-                     "{name, action_ns, type, joints}")]
-    entries, problems = [], []
+        problems.append((holder.lines["controller_list"], "controller_list must be a list of "
+                         "{name, action_ns, type, joints}"))
+        return
+    required = ("joints",) if fake or fake_list(listed) else ("joints", "action_ns", "type")
     for block, line in zip(listed, listed.lines):
         if not isinstance(block, YamlMap) or not isinstance(block.get("name"), str):
             problems.append((line, "each controller_list entry needs a 'name:'"))
             continue
-        entry, bad = _entry(file, block["name"], block, line)
-        problems.extend(bad)
+        entry = _entry(file, block["name"], block, line, required, 1, problems)
         entries += [entry] if entry else []
-    return entries, problems
 
 
-def _moveit2(file, holder) -> tuple[list[ControllerEntry], list]:
-    manager = holder["moveit_simple_controller_manager"]
-    where = holder.lines["moveit_simple_controller_manager"]
-    names = manager.get("controller_names") if isinstance(manager, YamlMap) else None
-    if not isinstance(names, YamlList):  # (a list's lines are a list: its .get was a crash)
-        return [], [(manager.lines.get("controller_names", where) if isinstance(manager, YamlMap)
-                     else where, "moveit_simple_controller_manager needs a 'controller_names:' "
-                     "list")]
-    entries, problems = [], []
+def _moveit2(file, manager: YamlMap, entries: list, problems: list) -> None:
+    names = manager["controller_names"]
+    if not isinstance(names, YamlList):
+        problems.append((manager.lines["controller_names"], "controller_names must be a list of "
+                         "the controllers' names"))
+        return
     for name, line in zip(names, names.lines):
-        if isinstance(name, bool) or not isinstance(name, (str, int)):  # (a list or a map
+        if not isinstance(name, str):
             problems.append((line, "each entry of controller_names must be a controller's "
-                             "name"))  # was looked up as a key, unhashable)
+                             "name"))
             continue
         block = manager.get(name)
         if not isinstance(block, YamlMap):
             problems.append((line, f"controller '{name}' is listed in controller_names but has "
-                             f"no '{name}:' block with its type and joints"))
+                             f"no '{name}:' block with its type and joints" + _elsewhere(
+                                 file.data, name, manager)))
             continue
-        entry, bad = _entry(file, name, block, manager.lines[name])
-        problems.extend(bad)
+        entry = _entry(file, name, block, manager.lines[name], ("action_ns", "type", "joints"),
+                       2, problems)
         entries += [entry] if entry else []
-    return entries, problems
 
 
-def ros_control_controllers(files) -> dict[str, set[str]]:
+def _elsewhere(data: YamlMap, name: str, manager: YamlMap) -> str:
+    """Where else in the file a ``name:`` mapping is (beside the list is the only place MoveIt
+    reads it: ``moveit_simple_controller_manager.NAME.type``), said for the message."""
+    for key, node in (("", data), *((k, v) for k, v in data.items() if isinstance(v, YamlMap))):
+        if node is not manager and isinstance(node.get(name), YamlMap):
+            return (f"; its mapping is {f'under {key!r}' if key else 'at the top of the file'}, "
+                    "outside the mapping that holds controller_names, where MoveIt does not read it")
+    return ""
+
+
+def ros_control_controllers(files, ros: int | None = None) -> dict[str, set[str]]:
     """The ros_control controllers declared in ``files`` (a mapping with ``type: pkg/Class``,
     ROS 1; or its ``NAME: ros__parameters:`` block, ROS 2), by name, with their joints
-    (``joints:`` or ``joint:``). MoveIt's own lists are skipped."""
+    (``joints:`` or ``joint:``). MoveIt's own lists are skipped. ``ros``: only those of ROS 2
+    parameter files (2) or of the others (1), the controllers a MoveIt of that ROS meets."""
     declared: dict[str, set[str]] = {}
     parameters: dict[str, set[str]] = {}
 
@@ -343,6 +458,6 @@ def ros_control_controllers(files) -> dict[str, set[str]]:
             walk(value, depth + 1)
 
     for file in files:
-        if file.problem is None:
+        if file.problem is None and (ros is None or file.ros2 == (ros == 2)):
             walk(file.data, 0)
     return {name: joints | parameters.get(name, set()) for name, joints in declared.items()}

@@ -95,6 +95,7 @@ def test_moveit_controller_list_joints_are_checked(tmp_path):
           - name: arm
             type: FollowJointTrajectory
             joints: [head_joint, neck_joint]
+            action_ns: follow_joint_trajectory
         """
     found, findings = check_folder(tmp_path, {"robot.urdf": robot, "other/c.yaml": yaml},
                                    controllers=[str(tmp_path / "other/c.yaml")])

@@ -39,14 +39,15 @@ def test_moveit2_layouts_under_ros_parameters(tmp_path):
                  "head_controller:\n  ros__parameters:\n    joints: [head_joint]\n",
              "moveit_controllers.yaml":
                  "moveit_simple_controller_manager:\n  controller_names: [head_controller, neck]\n"
-                 "  head_controller:\n    type: FollowJointTrajectory\n    joints: [head_joint, cam_joint]\n"}
+                 "  head_controller:\n    type: FollowJointTrajectory\n    joints: [head_joint, cam_joint]\n"
+                 "    action_ns: follow_joint_trajectory\n"}
     found, findings = check_folder(tmp_path, files, select=("U81", "U601"))
     # the timeout, max_position (!degrees 360: 2 pi to rosparam and to ROS 2's MoveIt, whose
     # launch_param_builder reads the tag alike) and min_position, the neck controller without
-    # a block (the controllers family's U601: the file is among the robot's controller files),
-    # and cam_joint that ros_control does not drive
+    # a block (U812 too where the file is among the robot's controller files: MoveIt's lists
+    # have one reader, moveit_config's, and one rule), and cam_joint that ros_control does not drive
     assert found == [("joint_limits.yaml", 5, "U816"), ("joint_limits.yaml", 6, "U816"),
-                     ("kinematics.yaml", 6, "U812"), ("moveit_controllers.yaml", 2, "U601"),
+                     ("kinematics.yaml", 6, "U812"), ("moveit_controllers.yaml", 2, "U812"),
                      ("moveit_controllers.yaml", 5, "U818")]
     assert "6.28319 is above" in findings[0].message and "adds cam_joint" in findings[4].message
 
@@ -55,7 +56,7 @@ def test_a_gripper_command_controller_may_list_the_mimicking_finger(tmp_path):
     files = {"robot.urdf": ROBOT, "robot.srdf": SRDF,
              "config/c.yaml": "grip:\n  type: position_controllers/GripperActionController\n  joint: head_joint\n",
              "ros_controllers.yaml": "controller_list:\n  - name: grip\n    type: GripperCommand\n"
-                                     "    joints: [head_joint, cam_joint]\n"}
+                                     "    action_ns: gripper_cmd\n    joints: [head_joint, cam_joint]\n"}
     assert check_folder(tmp_path, files, select=("U81",))[0] == []
 
 
@@ -386,3 +387,42 @@ def test_a_urdf_bound_not_written_is_urdfdoms_zero(tmp_path):
     found, findings = check_folder(tmp_path, files, select=("U816",))
     assert found == [("joint_limits.yaml", 4, "U816")]
     assert "min_position -1 is below the URDF's <limit lower=\"0\">" in findings[0].message
+
+
+@pytest.mark.parametrize("manager, severity", [
+    ("", "error"),
+    ("moveit_controller_manager: moveit_simple_controller_manager/MoveItSimpleControllerManager\n",
+     "error"),
+    # moveit_ros_control_interface asks the controller manager and reads no list: a note
+    ("moveit_controller_manager: moveit_ros_control_interface/Ros2ControlManager\n", "info"),
+])
+def test_a_moveit_list_among_the_controllers_is_u812s_wherever_it_is(tmp_path, manager, severity):
+    """MoveIt's list in the controller YAML beside the robot (no SRDF beside it) is read by the
+    one reader, and its problems are U812's, not U601's nor nobody's."""
+    files = {"robot.urdf": ROBOT, "config/controllers.yaml": manager + (
+        "moveit_simple_controller_manager:\n  controller_names: [head_controller]\n"
+        "  head_controller:\n    type: FollowJointTrajectory\n    joints: [head_joint]\n")}
+    found, findings = check_folder(tmp_path, files, select=("U6", "U8"),
+                                   controllers=[str(tmp_path / "config/controllers.yaml")])
+    line = 3 + bool(manager)
+    assert found == [("controllers.yaml", line, "U812")], [f.message for f in findings]
+    assert findings[0].severity.value == severity
+    assert "'head_controller' has no action_ns" in findings[0].message
+
+
+@pytest.mark.parametrize("controllers, found", [
+    # ROS 2's ros2_control serves MoveIt 2's list: its controllers are compared
+    ("controller_manager:\n  ros__parameters:\n    arm:\n"
+     "      type: joint_trajectory_controller/JointTrajectoryController\n", True),
+    # a ROS 1 file beside it (a Setup Assistant's leftover ros_controllers.yaml) serves no MoveIt 2
+    ("arm:\n  type: position_controllers/JointTrajectoryController\n  joints: [head_joint]\n", False),
+])
+def test_moveit2s_list_meets_ros2_controllers_only(tmp_path, controllers, found):
+    """rokae_ros2's xMatePro3 MoveIt 2 list (controller_names at the top of a file its launch
+    loads into moveit_simple_controller_manager) beside a ROS 1 ros_controllers.yaml: no U817."""
+    files = {"robot.urdf": ROBOT, "robot.srdf": SRDF, "config/c.yaml": controllers,
+             "moveit_controllers.yaml": "controller_names: [head_controller]\nhead_controller:\n"
+                                        "  action_ns: follow_joint_trajectory\n  type: FollowJointTrajectory\n"
+                                        "  joints: [head_joint]\n"}
+    codes = [code for _, _, code in check_folder(tmp_path, files, select=("U817",))[0]]
+    assert codes == (["U817"] if found else [])

@@ -28,6 +28,7 @@ from urdftool.description.controllers import (Controller, JointRef, controller_f
                                               runs_of)
 from urdftool.description.runtime import STATE_PUBLISHERS, Runs, runtime, together
 from urdftool.description.documents import YamlList, YamlMap
+from urdftool.description.moveit_config import moveit_controllers
 from urdftool.errors import available, shown_word
 from urdftool.lint.catalogue import Conditional, Severity, rule
 
@@ -112,8 +113,7 @@ def malformed_controllers_yaml(robot):
     The controller manager cannot load its parameters, so no controller starts. Files given
     with ``--controllers`` must hold at least one controller (a mapping with
     ``type: package/Class``), a ``controller_manager`` section, or MoveIt's
-    ``controller_list``/``controller_names``; a name MoveIt's ``controller_names`` lists needs
-    its own mapping (``type``, ``action_ns``, ``joints``) beside the list.
+    ``controller_list``/``controller_names`` (whose shape is U812's).
 
     A value PyYAML cannot construct (``2001-02-30``, a date to YAML 1.1 and no date; ``!!float
     junk``; ``<<: 5``) fails every loader of a ROS 1 file (rosparam reads with PyYAML); in a ROS
@@ -139,12 +139,8 @@ def malformed_controllers_yaml(robot):
             yield file.at(file.line), Conditional(file.caution)
     for read in controller_files(robot):
         file = read.file
-        for controller in read.controllers:
-            if controller.layout == "moveit" and controller.params is None:
-                yield file.at(controller.line), (
-                    f"MoveIt's controller_names lists '{controller.name}', but there is no "
-                    f"'{controller.name}:' mapping beside the list (with type, action_ns and joints)")
-        if explicit and not read.controllers and not _has_manager(read):
+        if explicit and not read.controllers and not _has_manager(read) and \
+                not moveit_controllers(file)[1]:  # (a MoveIt list it cannot read: U812)
             yield file.at(1), (f"{file.display} names no controller (a mapping with "
                                "'type: package/Class', e.g. joint_state_broadcaster/JointStateBroadcaster)")
         yield from _past_int32(robot, read)
@@ -592,7 +588,7 @@ def controller_unknown_class(robot):
         if _substituted(controller.type, controller):
             continue
         if controller.layout == "moveit":
-            if controller.params is not None and controller.type not in MOVEIT_TYPES:
+            if "type" in controller.params and controller.type not in MOVEIT_TYPES:  # (none: U812)
                 yield controller.file.at(controller.where("type")), (
                     f"MoveIt controller '{controller.name}' has type '{controller.type}'; MoveIt's "
                     f"simple controller manager knows {' and '.join(MOVEIT_TYPES)}")

@@ -75,6 +75,15 @@ def malformed_moveit_config(robot):
     know (``max_velocty``), and with ``has_velocity_limits: true`` and no ``max_velocity`` it
     plans without the limit the file meant to set.
 
+    MoveIt's controller list is read wherever it is, beside the SRDF or in the controller YAML
+    the robot is checked with, as moveit_simple_controller_manager reads it (see
+    :func:`urdftool.description.moveit_config.moveit_controllers`): MoveIt skips a controller
+    that lacks ``action_ns``, ``type`` or a ``joints:`` list of names (MoveIt 2: a non-empty
+    one), or that ``controller_names`` lists without its mapping beside the list; it reads no
+    list that is not a list. A note when the file names a ``moveit_controller_manager`` that
+    reads no list (moveit_ros_control_interface's, which asks the controller manager). A
+    ``type`` MoveIt does not know is U606's.
+
     Bad: ``kinematics_solver_timeout: fast``; ``max_velocty: 1.0``;
     ``controller_names: [arm_controller]`` without an ``arm_controller:`` block
     Good: ``kinematics_solver_timeout: 0.005``; ``max_velocity: 1.0``
@@ -84,10 +93,15 @@ def malformed_moveit_config(robot):
         read.append(file)
         for line, message in problems:
             yield file.at(line), message
-    beside_srdf = companions(robot).moveit_controllers
     for file, line, message in _moveit_controllers(robot)[1]:
-        if any(file is other for other in beside_srdf):  # the others: U601 (controllers family)
-            yield file.at(line), message
+        plugin = moveit.controller_manager(file)
+        if plugin is not None and not moveit.reads_list(plugin[0]):
+            message = Conditional(f"{file.display} names moveit_controller_manager {plugin[0]} "
+                                  "(which asks the controller manager and reads no list); if "
+                                  "MoveIt's simple controller manager is given it: " + message,
+                                  Severity.INFO)
+        yield file.at(line), message
+    beside_srdf = companions(robot).moveit_controllers
     for file in beside_srdf:
         if file.problem:
             yield file.at(file.line), file.problem
@@ -274,8 +288,11 @@ def _rounded(written: float, urdf: float) -> bool:
     return round(urdf, len(text.split(".")[1])) == written
 
 
-def _ros_control(robot) -> dict[str, set[str]]:
-    return robot.memo(_ros_control, lambda: moveit.ros_control_controllers(_controller_files(robot)))
+def _ros_control(robot, ros: int) -> dict[str, set[str]]:
+    """The ros_control controllers a MoveIt of ROS ``ros`` meets (MoveIt 2's list is served by
+    ros2_control's controllers, MoveIt 1's by ros_control's), by name, with their joints."""
+    return robot.memo_for(_ros_control, ros, lambda: moveit.ros_control_controllers(
+        _controller_files(robot), ros))
 
 
 def _remaps(robot, entry) -> list:
@@ -302,7 +319,9 @@ def moveit_controller_unknown(robot):
 
     MoveIt sends each trajectory to ``<name>/<action_ns>``; with no such controller running,
     execution fails ("Action client not connected"). Checked only when ros_control controllers
-    are declared in the YAML the robot is checked with (a namespace before the name is ignored).
+    are declared in the YAML the robot is checked with (a namespace before the name is ignored),
+    of MoveIt's ROS: MoveIt 2's ``controller_names`` against ROS 2 parameter files, MoveIt 1's
+    ``controller_list`` against the others.
 
     A MoveIt configuration is often written for the real robot, whose driver serves the
     trajectory action itself (ur_robot_driver's scaled_pos_joint_traj_controller, kortex_driver's
@@ -324,12 +343,10 @@ def moveit_controller_unknown(robot):
     ``arm_trajectory_controller``
     Good: the same name in both
     """
-    declared = _ros_control(robot)
-    if not declared:
-        return
     for entry in _moveit_controllers(robot)[0]:
+        declared = _ros_control(robot, entry.ros)
         name = entry.name.strip("/").split("/")[-1]
-        if not name:  # MoveIt sends to ``/<action_ns>`` itself: a driver's, never ros_control's
+        if not name or not declared:  # MoveIt sends to ``/<action_ns>`` itself: a driver's
             continue
         if name not in declared:
             message = (f"MoveIt controller '{entry.name}' is not a ros_control controller of this "
@@ -375,8 +392,8 @@ def moveit_controller_joints(robot):
     Bad: MoveIt ``joints: [j1, j2, j3]`` for a controller with ``joints: [j1, j2]``
     Good: the same joints (in any order)
     """
-    declared = _ros_control(robot)
     for entry in _moveit_controllers(robot)[0]:
+        declared = _ros_control(robot, entry.ros)
         name = entry.name.strip("/").split("/")[-1]
         remap = next((r for r in _remaps(robot, entry) if r.controller in declared), None) \
             if declared else None
