@@ -170,21 +170,63 @@ def superlinear(pattern: re.Pattern, anchored: bool = False, short: int = 2_000,
     return None
 
 
+def _literal_parts(node) -> list:
+    """The pattern a call is given when it is written as literals joined by ``+``, a name
+    (``re.escape(name)``) standing for what is not written (``rb"<macro\\s[^<>]*?name=" +
+    re.escape(name) + rb"..."``); none when no part is written."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, (str, bytes)):
+        return [node.value]
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
+        left, right = _literal_parts(node.left), _literal_parts(node.right)
+        if len(left) == 1 and len(right) == 1 and type(left[0]) is type(right[0]):
+            return [left[0] + right[0]]
+        if left and not right and not _is_literal(node.right):  # + re.escape(name): a name
+            return [left[0] + type(left[0])("name")] if isinstance(left[0], str) else \
+                [left[0] + b"name"]
+        if right and not left and not _is_literal(node.left):
+            return [("name" if isinstance(right[0], str) else b"name") + right[0]]
+    return []
+
+
+def _is_literal(node) -> bool:
+    return isinstance(node, ast.Constant) or isinstance(node, ast.BinOp) and \
+        _is_literal(node.left) and _is_literal(node.right)
+
+
 def _patterns() -> dict[str, tuple[re.Pattern, bool]]:
     """Every module-level pattern of urdftool: name -> (pattern, called only anchored)."""
     found: dict[int, tuple[str, re.Pattern]] = {}
     calls: dict[int, set[str]] = {}
+    literals: list[tuple] = []
     for info in pkgutil.walk_packages(urdftool.__path__, "urdftool."):
         module = importlib.import_module(info.name)
         names = vars(module)
         for name, value in names.items():
-            if isinstance(value, re.Pattern):
-                found.setdefault(id(value), (f"{info.name}.{name}", value))
+            members = value if isinstance(value, (tuple, list)) else [value]
+            for at, member in enumerate(members):
+                if isinstance(member, re.Pattern):
+                    where = name if member is value else f"{name}[{at}]"
+                    found.setdefault(id(member), (f"{info.name}.{where}", member))
         tree = ast.parse(Path(module.__file__).read_text(encoding="utf-8"))
         for node in ast.walk(tree):
             if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and \
                     isinstance(names.get(node.value.id), re.Pattern):
                 calls.setdefault(id(names[node.value.id]), set()).add(node.attr)
+            # a literal pattern written where it is used (re.search("...", text), a function's
+            # own re.compile("..." + name): its literal parts)
+            if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and \
+                    isinstance(node.func.value, ast.Name) and node.func.value.id == "re" and \
+                    node.func.attr in _SCANS | _ANCHORED | {"compile"} and node.args:
+                for part in _literal_parts(node.args[0]):
+                    flags = re.S if "DOTALL" in ast.unparse(node) or "re.S" in ast.unparse(node) \
+                        else 0
+                    literals.append((f"{info.name}:{node.lineno}", part, flags, node.func.attr))
+    known = {pattern.pattern for _, pattern in found.values()}
+    for name, part, flags, called in literals:
+        if part not in known:  # (a module's own pattern, written where it is named)
+            pattern = re.compile(part, flags)
+            found.setdefault(id(pattern), (name, pattern))
+            calls.setdefault(id(pattern), set()).add(called if called != "compile" else "search")
     return {name: (pattern, bool(calls.get(key)) and calls[key] <= _ANCHORED)
             for key, (name, pattern) in found.items()}
 

@@ -75,7 +75,8 @@ SOURCE = "urdftool"
 _SEVERITIES = {Severity.ERROR: types.DiagnosticSeverity.Error,
                Severity.WARNING: types.DiagnosticSeverity.Warning,
                Severity.INFO: types.DiagnosticSeverity.Information}
-_WORD = re.compile(r"[A-Za-z0-9_-]*$"), re.compile(r"^[A-Za-z0-9_-]*")
+# (the word before the position from its first character: from each, quadratic in a long word)
+_WORD = re.compile(r"(?<![A-Za-z0-9_-])[A-Za-z0-9_-]*$"), re.compile(r"^[A-Za-z0-9_-]*")
 _CODE = re.compile(r"[Uu]\d{3}")
 _PLAIN_NAME = re.compile(r"(?!\.\.?$)[A-Za-z0-9._-]+")  # (UrdftoolServer.paths_of)
 _PLAIN_FOLDER_URI = re.compile(r"file://[^;?#\x00-\x20\x7f]*")
