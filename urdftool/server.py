@@ -75,11 +75,12 @@ SOURCE = "urdftool"
 _SEVERITIES = {Severity.ERROR: types.DiagnosticSeverity.Error,
                Severity.WARNING: types.DiagnosticSeverity.Warning,
                Severity.INFO: types.DiagnosticSeverity.Information}
-_WORD = re.compile(r"[A-Za-z0-9_-]*$"), re.compile(r"^[A-Za-z0-9_-]*")
+# (the word before the position from its first character: from each, quadratic in a long word)
+_WORD = re.compile(r"(?<![A-Za-z0-9_-])[A-Za-z0-9_-]*$"), re.compile(r"^[A-Za-z0-9_-]*")
 _CODE = re.compile(r"[Uu]\d{3}")
 _PLAIN_NAME = re.compile(r"(?!\.\.?$)[A-Za-z0-9._-]+")  # (UrdftoolServer.paths_of)
 _PLAIN_FOLDER_URI = re.compile(r"file://[^;?#\x00-\x20\x7f]*")
-_IGNORE_LINE = re.compile(r"^(\s*)<!--\s*urdftool:\s*ignore\s+(.*?)\s*-->\s*$")
+_IGNORE_LINE = re.compile(r"^(\s*)<!--\s*urdftool:\s*ignore\s++(.*)-->\s*$")  # group 2 stripped where read
 
 logger = logging.getLogger(__name__)
 
@@ -847,13 +848,14 @@ def suppress_on_line(uri: str, lines: list[str], diagnostic: types.Diagnostic,
     above = _IGNORE_LINE.match(lines[number - 1].rstrip("\r\n")) if 0 < number <= len(lines) \
         else None
     if above:
-        if code in re.split(r"[\s,]+", above.group(2)):
+        codes = above.group(2).rstrip()
+        if code in re.split(r"[\s,]+", codes):
             return []
         previous = lines[number - 1].rstrip("\r\n")
         edit = types.TextEdit(
             range=types.Range(start=types.Position(number - 1, 0),
                               end=types.Position(number - 1, codec.client_num_units(previous))),
-            new_text=f"{above.group(1)}<!-- urdftool: ignore {above.group(2)}, {code} -->")
+            new_text=f"{above.group(1)}<!-- urdftool: ignore {codes}, {code} -->")
         return [_action(title, uri, diagnostic, edit)]
     indent = line[:len(line) - len(line.lstrip())]
     edit = types.TextEdit(range=types.Range(start=types.Position(number, 0),
@@ -880,8 +882,8 @@ ACTION_PROVIDERS = (suppress_on_line, suppress_in_file)
 
 # What a comment cannot be written inside: a tag (its quoted values may hold '>'), a comment, a
 # CDATA section, a processing instruction or declaration, a document type declaration
-_MARKUP = re.compile(r"""<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!(?:"[^"]*"|'[^']*'|[^>"'])*>"""
-                     r"""|<(?:"[^"]*"|'[^']*'|[^>"'])*>""", re.S)
+_MARKUP = re.compile(r"""<!--.*?(?:-->|\Z)|<!\[CDATA\[.*?(?:\]\]>|\Z)|<\?.*?(?:\?>|\Z)"""
+                     r"""|<!?(?:"[^"]*(?:"|\Z)|'[^']*(?:'|\Z)|[^>"'])*+(?:>|\Z)""", re.S)
 
 
 def starts_inside_markup(lines: list[str]) -> set[int]:
@@ -1129,7 +1131,7 @@ class Transport:
         return body
 
 
-_TRACEBACK = re.compile(r"\s*[ |+]*(?:Exception Group )?Traceback \(most recent call last\):")
+_TRACEBACK = re.compile(r"(?<![\s|+])[\s|+]*?(?:Exception Group )?Traceback \(most recent call last\):")
 _EXCEPTION_LINE = re.compile(r"[A-Za-z_][\w.]*(?::|$)")  # "TypeError: ...", not "File ..."
 MAX_LOG_RECORD = 2000  # [characters] of a record's message
 

@@ -176,8 +176,8 @@ def _finished(result: dict, caught: list[str]) -> dict:
 # console_bridge's messages (urdfdom, sdformat): "Error:   text" then "at line N in file.cpp",
 # the line of the library's source that printed it, never one of the robot's
 # (line ends: the library's output's, LF)
-_PRINTED = re.compile(r"^(?:Error|Warning):\s+(.*?)\s*$((?:\n[ \t]+(?!at line \d+ in )\S.*$)*)", re.M)
-SOURCE_LINE = re.compile(r"\s*\bat line \d+ in \S+\.(?:cpp|cc|cxx|c|hpp|hh|h)\b")
+_PRINTED = re.compile(r"^(?:Error|Warning):\s+(.*)\s*$((?:\n[ \t]+(?!at line \d+ in )\S.*$)*)", re.M)
+SOURCE_LINE = re.compile(r"(?<!\s)\s*\bat line \d+ in \S+\.(?:cpp|cc|cxx|c|hpp|hh|h)\b")
 
 
 def printed_errors(output: str) -> list[str]:

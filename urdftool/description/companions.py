@@ -514,7 +514,7 @@ def _auto_controllers(robot, folders, owner: _Owner, found: Companions) -> list[
     return files
 
 
-_PARAMETERS = re.compile(rb"<parameters>\s*([^<]*?)\s*</parameters>")
+_PARAMETERS = re.compile(rb"<parameters>([^<]*)</parameters>")  # (the value stripped where read)
 
 
 def _named_by_another(robot, path: Path) -> Path | None:
@@ -672,7 +672,7 @@ def _anothers(path: Path, robot) -> list[Path]:
 
 
 _PACKAGE_SRDF = "*.srdf|*.srdf.xacro"  # a MoveIt package's SRDF, as written or as xacro
-_ROBOT_NAME = re.compile(rb"<robot\b[^>]*?\sname\s*=\s*[\"']([^\"'$<>]*)[\"']")
+_ROBOT_NAME = re.compile(rb"<robot\b[^<>]*?\sname\s*=\s*[\"']([^\"'$<>]*)[\"']")
 _HEAD = 64 * 1024  # [bytes] of a robot file where its <robot name> is looked for
 _NAMED_MOST = 1024 * 1024  # [bytes] a robot file read for its name may have (larger: no name)
 _NAMED_FILES = 2000  # robot files of a repository read for their names, at most

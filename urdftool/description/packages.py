@@ -275,16 +275,16 @@ class PackageResolver:
 # (a build-only one too: whether it reaches a binary install is the build's business).
 _DEPEND = re.compile(rb"<(?:depend|build_depend|build_export_depend|exec_depend|run_depend|"
                      rb"test_depend|doc_depend|buildtool_depend|buildtool_export_depend)"
-                     rb"(?:\s[^>]*)?>\s*([^<\s]+)\s*</")
+                     rb"(?:\s[^<>]*)?>\s*([^<\s]+)\s*</")
 # rosbuild's manifest.xml: <depend package="NAME"/> (a <depend stack=...> names a stack, no package)
-_ROSBUILD_DEPEND = re.compile(rb"<depend\s[^>]*?\bpackage\s*=\s*[\"']\s*([^\"'\s]+)\s*[\"']")
-_COMMENT = re.compile(rb"<!--.*?-->", re.S)
+_ROSBUILD_DEPEND = re.compile(rb"<depend\s[^<>]*?\bpackage\s*=\s*[\"']\s*([^\"'\s]+)\s*[\"']")
+_COMMENT = re.compile(rb"<!--.*?(?:-->|\Z)", re.S)
 # A package named literally in robot files: $(find NAME), package://NAME/ (not ${...} names);
 # and the tags of xacro's conditional blocks (unprefixed as ROS 1's xacro took them too).
 _FIND = re.compile(rb"\$\(find\s+([A-Za-z0-9_][A-Za-z0-9_.-]*)\s*\)")
 _PACKAGE_URI = re.compile(rb"package://([A-Za-z0-9_][A-Za-z0-9_.-]*)/")
 _REFERENCE = re.compile(_FIND.pattern + b"|" + _PACKAGE_URI.pattern + b"|" +
-                        rb"<(/?)(?:xacro:)?(if|unless)\b[^>]*?(/?)>")
+                        rb"<(/?)(?:xacro:)?(if|unless)\b[^<>]*?(/?)>")
 # What every conditional tag _REFERENCE finds holds ("<if", "</xacro:unless", ...)
 _CONDITIONAL = (b"<if", b"/if", b":if", b"<unless", b"/unless", b":unless")
 
@@ -342,9 +342,9 @@ def declared_dependencies(folder: Path) -> frozenset[str] | None:
     return frozenset(name.decode("utf-8", "replace") for name in pattern.findall(found[1]))
 
 
-_CATKIN = re.compile(rb"<buildtool_depend[^>]*>\s*(catkin)\s*<")
-_AMENT = re.compile(rb"<buildtool_depend[^>]*>\s*(ament_(?:cmake|python))|<build_type>\s*(ament_\w+)")
-_CONDITIONED = re.compile(rb"<buildtool_depend[^>]*condition=")
+_CATKIN = re.compile(rb"<buildtool_depend[^<>]*>\s*(catkin)\s*<")
+_AMENT = re.compile(rb"<buildtool_depend[^<>]*>\s*(ament_(?:cmake|python))|<build_type>\s*(ament_\w+)")
+_CONDITIONED = re.compile(rb"<buildtool_depend[^<>]*condition=")
 
 
 def build_tools(path) -> tuple[tuple[int, str, Path], ...]:
@@ -538,9 +538,9 @@ def _manifests_regular(entries) -> bool | None:
     return all(kind == "file" for kind in kinds) if kinds else None
 
 
-_EXPORT = re.compile(rb"<export\b[^>]*>(.*?)</export>", re.S)
+_EXPORT = re.compile(rb"<export\b[^<>]*>((?:[^<]|<(?!/?export\b))*+)</export>")
 _PLUGIN = re.compile(rb"\splugin\s*=\s*[\"']\$\{prefix\}/([^\"']+)[\"']")
-_CLASS = re.compile(rb"<class\b([^>]*)>")
+_CLASS = re.compile(rb"<class\b([^<>]*)>")
 _CLASS_NAME = re.compile(rb"\s(name|type)\s*=\s*[\"']([^\"']+)[\"']")
 
 

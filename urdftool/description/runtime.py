@@ -37,6 +37,7 @@ from urdftool.description.launch_configs import (BY_DEFAULT, WILD, Configuration
 from urdftool.description.packages import (build_tools, containment_root, declared_dependencies,
                                            package_name, package_of, packages_below)
 from urdftool.description.run_memo import per_run
+from urdftool.description.xacro_text import ARG_DEFAULT
 from urdftool.diagnostics import display_path
 from urdftool.records import Frozen, NEW, Record, replace
 
@@ -48,8 +49,6 @@ _VALUED = {"-c", "--controller-manager", "-p", "--param-file", "-n", "--namespac
            "--controller-type", "--controller-manager-timeout", "--switch-timeout",
            "--service-call-timeout", "--timeout", "--shutdown-timeout", "--controller-ros-args",
            "--fallback_controllers", "--fallback-controllers"}
-_XACRO_ARG = re.compile(rb"<xacro:arg\s[^<>]*?name\s*=\s*[\"']([^\"'<>]+)[\"'][^<>]*?default\s*=\s*[\"']([^\"'<>]*)[\"']",
-                        re.S)
 
 
 class Spawn(Frozen):
@@ -361,7 +360,7 @@ def _robot_args(robot) -> dict:
     default)."""
     found: dict = {}
     for data in robot.sources.values():
-        for name, default in _XACRO_ARG.findall(data):
+        for name, default in ARG_DEFAULT.findall(data):
             if b"$(" not in default:
                 found.setdefault(name.decode("utf-8", "replace"), default.decode("utf-8", "replace"))
     found.update({str(k): str(v) for k, v in getattr(robot, "xacro_args", {}).items()})

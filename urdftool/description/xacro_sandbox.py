@@ -248,7 +248,9 @@ def _check_width(spec, what: str) -> None:
                                    "characters")
 
 
-_PERCENT = re.compile(r"%(?:\([^)]*\))?[#0 +-]*(\*|\d+)?(?:\.(\*|\d+))?")
+# a key never closed runs to the end: Python refuses it there ("incomplete format key"), after
+# the specifications before it, and from each '%(' to the end was quadratic in them
+_PERCENT = re.compile(r"%(?:\([^)]*(?:\)|\Z))?[#0 +-]*(\*|\d+)?(?:\.(\*|\d+))?")
 
 
 def _check_percent_format(text, values) -> None:

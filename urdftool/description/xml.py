@@ -201,7 +201,7 @@ _EXPLAINED = {"XML or text declaration not at start of entity": _declaration_lat
               "junk after document element": _junk, "syntax error": _syntax}
 
 
-_COMMENTS = re.compile(rb"<!--.*?-->|<\?.*?\?>", re.S)
+_COMMENTS = re.compile(rb"<!--.*?(?:-->|\Z)|<\?.*?(?:\?>|\Z)", re.S)
 
 
 def _mismatch(data: bytes) -> str:
@@ -250,7 +250,7 @@ def merge_conflict(data: bytes) -> XmlProblem | None:
 
 
 # a comment as TinyXML2 reads it: from "<!--" to the first "-->", whatever comes between
-_TINYXML2_COMMENT = re.compile(rb"<!--(.*?)-->", re.DOTALL)
+_TINYXML2_COMMENT = re.compile(rb"<!--(.*?)(-->|\Z)", re.DOTALL)
 
 
 def tinyxml2_comments(data: bytes) -> tuple[bytes, int] | None:
@@ -268,7 +268,7 @@ def tinyxml2_comments(data: bytes) -> tuple[bytes, int] | None:
     def blanked(found):
         nonlocal first
         body = found.group(1)
-        if b"--" not in body and not body.endswith(b"-"):
+        if not found.group(2) or b"--" not in body and not body.endswith(b"-"):
             return found.group(0)
         if first is None:
             at = body.find(b"--")
@@ -365,7 +365,7 @@ def start_tag_positions(data: bytes) -> list[tuple[int, int]]:
 # Any other document, and any expat refuses, takes the full pass (start_tag_positions), which
 # says why.
 _START = re.compile(rb"<[^/!?]")
-_SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.DOTALL)
+_SKIPPED = re.compile(rb"<!--.*?(?:-->|\Z)|<!\[CDATA\[.*?(?:\]\]>|\Z)|<\?.*?(?:\?>|\Z)", re.DOTALL)
 _OPENING = re.compile(rb"<(?![/!?])")
 _NEWLINE = re.compile(rb"\n")
 _LONE_CR = re.compile(rb"\r(?!\n)")

@@ -23,7 +23,7 @@ from urdftool.description.files import read_regular
 from urdftool.lint.catalogue import FAMILIES, Catalogue
 from urdftool.records import Frozen
 
-_COMMENT = re.compile(r"<!--\s*urdftool:\s*(ignore-file|ignore)\b(.*?)-->", re.S)
+_COMMENT = re.compile(r"<!--\s*urdftool:\s*(ignore-file|ignore)\b((?:(?!<!--).)*?)-->", re.S)
 _ONLY_COMMENT = re.compile(r"^\s*<!--.*-->\s*$")
 
 

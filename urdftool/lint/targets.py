@@ -28,6 +28,7 @@ from urdftool.description.xacro_text import (CHUNK as _CHUNK, DEFINITIONS as _DE
                                              _Answered, arg_defaults as _arg_defaults,
                                              head as _head, included_files as _included_files,
                                              is_xacro as _is_xacro, local_name as _local_name,
+                                             without_macro_bodies as _without_macro_bodies,
                                              reached, resolved_path, resolved_spec as _resolved_spec,
                                              stays_inside as _stays_inside, stream as _stream,
                                              uncommented as _uncommented)
@@ -533,15 +534,8 @@ def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:
     return False
 
 
-def _without_macro_bodies(data: bytes) -> bytes:
-    """``data`` without its macro definitions (the same bytes, not searched, when it has no
-    ``macro`` at all, as most robots)."""
-    return _MACRO_BODY.sub(b"", data) if b"macro" in data else data
-
-
 _NAMED_ROBOT = re.compile(rb"<robot\b[^<>]*?\sname\s*=", re.S)
 _MACRO = re.compile(rb"<(?:xacro:)?macro\s")
-_MACRO_BODY = re.compile(rb"<(?:xacro:)?macro\s.*?</(?:xacro:)?macro\s*>", re.S)
 
 
 def companion_users(companion: Path, robots: list[Path], limit: int = DEFAULT_MAX_FILE_SIZE
@@ -624,7 +618,7 @@ def _borrows_macros(data: bytes, written: bytes) -> bool:
     return bool(calls - set(_DEFINED_MACRO.findall(data)))
 
 
-_MATERIAL_NAMED = re.compile(rb"<material\s[^<>]*?name\s*=\s*[\"']([^\"'<>$]+)[\"'][^<>]*?(/?)>", re.S)
+_MATERIAL_NAMED = re.compile(rb"<material\s(?>[^<>]*?name\s*=\s*[\"']([^\"'<>$]+)[\"'])[^<>]*?(/?)>", re.S)
 
 
 def _borrows_materials(data: bytes, written: bytes) -> bool:

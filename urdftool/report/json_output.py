@@ -101,8 +101,8 @@ def name_bytes(value: str) -> bytes:
 
 # a \u escape of a surrogate or of U+FFFD, the backslashes before it (even: an escaped
 # backslash's text) and a low surrogate's escape after a high one (a pair: a character past
-# U+FFFF)
-_SURROGATE_ESCAPE = re.compile(rb"(\\+)u(d[89ab][0-9a-f]{2}(?:\\ud[c-f][0-9a-f]{2})?|"
+# U+FFFF); a run of backslashes from its first only (from each: quadratic in the run)
+_SURROGATE_ESCAPE = re.compile(rb"(?<!\\)(\\++)u(d[89ab][0-9a-f]{2}(?:\\ud[c-f][0-9a-f]{2})?|"
                                rb"d[c-f][0-9a-f]{2}|fffd)", re.IGNORECASE)
 _CONTENT_LENGTH = re.compile(rb"Content-Length: ([0-9]+)\r\n")
 

@@ -49,7 +49,7 @@ NODE_TRANSFORM = "urdftool_node_transform"
 # digits: 1e400), each a word of its own (not "info", "nanometer" or a COLLADA id "ID3e600"):
 # only a sign, which :func:`_non_finite` counts exactly (a false one costs a second reading)
 _NOT_FINITE_SIGN = re.compile(rb"(?i)(?<![a-z0-9_#.])[-+]?(?:(?:nan|inf(?:inity)?)(?![a-z0-9_])|"
-                              rb"[0-9]*\.?[0-9]+e\+?0*[1-9][0-9]{2}(?![0-9a-z_]))")
+                              rb"(?:[0-9]*+\.)?[0-9]++e\+?0*[1-9][0-9]{2}(?![0-9a-z_]))")
 # The first line of a Git LFS pointer: what a clone without git-lfs holds instead of the file
 LFS_POINTER = b"version https://git-lfs.github.com/spec/"
 
@@ -176,7 +176,7 @@ def refuse_too_far(uri: str, vertices, cause: str | None = None) -> None:
                                            + (f" ({cause})" if cause else ""))
 
 
-_DAE_UNIT = re.compile(rb"<unit\b[^>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
+_DAE_UNIT = re.compile(rb"<unit\b[^<>]*\bmeter\s*=\s*[\"']([0-9.eE+-]+)[\"']")
 
 
 def collada_unit(data: bytes) -> float:

@@ -493,7 +493,8 @@ def _ignore_patterns(name: str) -> tuple | None:
         return None
     found = []
     for line in text.splitlines():
-        line = re.sub(r"(?<!\\) +$", "", line)  # trailing spaces, unless escaped
+        kept = line.rstrip(" ")  # trailing spaces, unless escaped (a pattern of them from each
+        line = kept + " " if kept != line and kept.endswith("\\") else kept  # space: quadratic)
         if not line or line.startswith("#"):
             continue
         negated = line.startswith("!")

@@ -97,7 +97,7 @@ def _alike(robot) -> dict | None:
     return found
 
 
-_AXIS_RPY = re.compile(rb"<axis\b[^>]*\srpy=")
+_AXIS_RPY = re.compile(rb"<axis\b[^<>]*\srpy=")
 
 
 def _skipped(tag) -> bool:
@@ -389,7 +389,7 @@ def _macro_file_root(robot, name: str) -> str:
     otherwise."""
     import os
 
-    wanted = re.compile(rb"<xacro:macro\s[^>]*?\bname\s*=\s*[\"']" + re.escape(name.encode())
+    wanted = re.compile(rb"<xacro:macro\s[^<>]*?\bname\s*=\s*[\"']" + re.escape(name.encode())
                         + rb"[\"']")
     for path, data in robot.sources.items():
         start = _first_element(data)
