@@ -32,6 +32,7 @@ is bounded (steps, depth, loop items); a file it cannot parse has a ``problem``.
 from __future__ import annotations
 
 import ast
+from ast import walk as ast_nodes  # (in memory: ast.walk reads no file)
 from pathlib import Path
 
 from urdftool.description.launch import (MAX_ACTIONS, Arg, Condition, Description, Include,
@@ -152,9 +153,9 @@ class _Reader:
         self.walked: set[str] = set()
         # names the launch file reads somewhere, and its own assignments: an action assigned
         # only to names it never reads is never handed to a launch description
-        self.read_names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)
+        self.read_names = {n.id for n in ast_nodes(tree) if isinstance(n, ast.Name)
                            and isinstance(n.ctx, ast.Load)}
-        self.own_assignments = {id(n) for n in ast.walk(tree) if isinstance(n, ast.Assign)}
+        self.own_assignments = {id(n) for n in ast_nodes(tree) if isinstance(n, ast.Assign)}
 
     # --- statements -----------------------------------------------------------------------
 
