@@ -491,11 +491,11 @@ _FILE = (re.compile(r"Error opening file '([^']+)'"),
          re.compile(r"unsupported extension '[^']+' for geometry data: (\S+?)\.?$",
                     re.M))  # line ends: a loader's messages (LF)
 _LINK = (re.compile(r"Element name '([^']+)'"), re.compile(r"link\[@name=\"([^\"]+)\"\]"),
-         re.compile(r"A link named (\S+) has"), re.compile(r"Link:\s*(?:b3Error\[[^\]]*\]:\s*)?"
+         re.compile(r"A link named (\S+) has"), re.compile(r"Link:\s*(?:b3Error\[[^\]\s]*\]:\s*)?"
                                                              r"((?:(?!Link:)\S)+?)b3"),
          re.compile(r"link \[([^][]+)\]"),  # (a name looked for up to the next opener only:
          # from each to the end of the loader's output was quadratic in them)
-         re.compile(r"root links found: \[[^\]]+\] and \[([^\]]+)\]"))  # urdfdom: the second root
+         re.compile(r"root links found: \[[^\]\s]+\] and \[([^\]\s]+)\]"))  # urdfdom: the second root
 
 
 def _result(name: str, raw: dict, robot, lines: dict, urdf: str) -> LoaderResult:
