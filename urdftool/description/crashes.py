@@ -1,9 +1,9 @@
 """What a reader of the user's files did when it crashed outside a rule: the one record of a
 reader's internal error (a bug in urdftool, never the file's defect), kept until the linter
-says it (an internal error, at the file being read, naming the reader). A reader run while finding targets
-(launch files read to know which robots they build) or inside a rule then answers as if the
-file said nothing, and the run goes on with the other files; nothing is swallowed: each crash
-is said once, by whoever drains the record (:func:`drained`)."""
+says it (an internal error, at the file being read, naming the reader). A reader run while
+finding targets (launch files read to know which robots they build) or inside a rule then
+answers as if the file said nothing, and the run goes on with the other files; nothing is
+swallowed: each crash is said once, by whoever drains the record (:func:`drained`)."""
 
 from __future__ import annotations
 
@@ -30,9 +30,9 @@ class Crash(Frozen):
 
 
 def guarded(reader: str, path, read, fallback=None):
-    """``read()``, or ``fallback`` when it raises (a MemoryError is raised again: the memory
-    budget's to stop, an UrdftoolError is raised on purpose; the drainer raises again what else is its doing), the crash kept for
-    :func:`drained`."""
+    """``read()``, or ``fallback`` when it raises, the crash kept for :func:`drained`. A
+    MemoryError is raised again (the memory budget's to stop), and so is an UrdftoolError (one
+    raised on purpose)."""
     from urdftool.errors import UrdftoolError
 
     try:

@@ -160,9 +160,8 @@ def limit_range(kind: str | None, limit, texts: tuple | None = None
         return None
     lower_text, upper_text = (limit.get("lower"), limit.get("upper")) if texts is None \
         else texts
-    lower, _ = number_tuple("0" if lower_text is None else lower_text, 1)
-    upper, _ = number_tuple("0" if upper_text is None else upper_text, 1)
-    return (lower[0], upper[0]) if lower and upper else None
+    lower, upper = _bound(lower_text), _bound(upper_text)
+    return (lower, upper) if lower is not None and upper is not None else None
 
 
 def limit_bound(limit, name: str) -> float | None:
@@ -170,7 +169,25 @@ def limit_bound(limit, name: str) -> float | None:
     urdfdom reads it: 0 when it is not written (urdfdom's default, which the joint then
     keeps: a planner stops there); None when it is no number. A number not finite is one
     here. For a caller that compares each bound on its own (:func:`limit_range` for both)."""
-    text = limit.get(name)
+    return _bound(limit.get(name))
+
+
+def limit_value(joint, attribute: str) -> float | None:
+    """The number of ``attribute`` of ``joint``'s ``<limit>``, None without a ``<limit>``: a
+    bound (lower, upper) as :func:`limit_bound` reads it, 0 when not written; an effort or a
+    velocity when written and a number. What the URDF says a joint allows, as the limits of
+    another file (a spec, MoveIt's joint_limits.yaml) are compared with it."""
+    limit = joint.find("limit")
+    if limit is None:
+        return None
+    if attribute in ("lower", "upper"):
+        return limit_bound(limit, attribute)
+    values, _ = number_tuple(limit.get(attribute), 1)
+    return values[0] if values else None
+
+
+def _bound(text: str | None) -> float | None:
+    """A ``<limit>`` bound's text as urdfdom reads it: 0 when not written, None when no number."""
     values, _ = number_tuple("0" if text is None else text, 1)
     return values[0] if values else None
 

@@ -318,7 +318,7 @@ def nameless_robot(path, limit: int = DEFAULT_MAX_FILE_SIZE, own_links: bool = T
 _ROBOT_TAG = re.compile(rb"<robot\b[^<>]*>")
 _NAME_ATTRIBUTE = re.compile(rb"\sname\s*=")
 _OWN_LINK = re.compile(rb"<(?:link|joint)\b")
-_MACRO_START = re.compile(rb"<(?:xacro:)?macro\s")
+MACRO_START = re.compile(rb"<(?:xacro:)?macro\s")  # a macro definition's opening tag
 _MACRO_END = re.compile(rb"</(?:xacro:)?macro\s*>")
 
 
@@ -332,7 +332,7 @@ def without_macro_bodies(data: bytes) -> bytes:
     if b"macro" not in data:
         return data
     kept, at = [], 0
-    while (start := _MACRO_START.search(data, at)) is not None:
+    while (start := MACRO_START.search(data, at)) is not None:
         end = _MACRO_END.search(data, start.end())
         if end is None:
             break

@@ -24,6 +24,7 @@ from urdftool.description.packages import SKIP_DIRS, PackageResolver, containmen
 from urdftool.description.urdf import ROBOT_GLOB, is_robot_name, is_urdf_name
 from urdftool.description.xacro_text import (CHUNK as _CHUNK, DEFINITIONS as _DEFINITIONS,
                                              FIND as _FIND, INCLUDE as _INCLUDE,
+                                             MACRO_START as _MACRO,
                                              XACRO_DIRECTIVES as _XACRO_DIRECTIVES,
                                              _Answered, arg_defaults as _arg_defaults,
                                              head as _head, included_files as _included_files,
@@ -535,7 +536,6 @@ def _misses_a_package(data: bytes, resolver: PackageResolver) -> bool:
 
 
 _NAMED_ROBOT = re.compile(rb"<robot\b[^<>]*?\sname\s*=", re.S)
-_MACRO = re.compile(rb"<(?:xacro:)?macro\s")
 
 
 def companion_users(companion: Path, robots: list[Path], limit: int = DEFAULT_MAX_FILE_SIZE

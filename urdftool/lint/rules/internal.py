@@ -7,8 +7,9 @@ U900 = declare("U900", "internal-error", Severity.ERROR, """
     A rule, the loader or a reader crashed on this file: a bug in urdftool, not in the robot.
 
     A reader is what reads a file besides the robot's (a launch file read while finding the
-    robots to check, or for a rule, the settings). The run goes on with the other rules and files; a file whose reader crashed is taken as if
-    it said nothing. Please report it with the file attached.
+    robots to check, or for a rule, the settings). The run goes on with the other rules and
+    files; a file whose reader crashed is taken as if it said nothing. Please report it with
+    the file attached.
     """)
 
 U901 = declare("U901", "unused-suppression", Severity.WARNING, """

@@ -14,7 +14,7 @@ from urdftool.description.documents import read_srdf
 from urdftool.description.files import listing
 from urdftool.description.companions import companions
 from urdftool.description.urdf import LIMITED, MOVING
-from urdftool.description.values import limit_bound, parse_numbers
+from urdftool.description.values import limit_value
 from urdftool.errors import available
 from urdftool.description.runtime import moveit_action_remaps, moveit_execution
 from urdftool.lint.catalogue import Conditional, Severity, rule
@@ -225,21 +225,6 @@ def moveit_limits_unknown_joint(robot):
                                         "which is not in the URDF; " + available('joints', entry.joint, robot.joints))
 
 
-def _urdf_limit(joint, key: str) -> float | None:
-    """The URDF's ``key`` of the joint's ``<limit>``, None without one: a bound as urdfdom
-    (and so MoveIt) reads it (:func:`~urdftool.description.values.limit_bound`, 0 when not
-    written), an effort or velocity when written."""
-    limit = joint.find("limit")
-    if limit is None:
-        return None
-    if key in ("lower", "upper"):
-        return limit_bound(limit, key)
-    if limit.get(key) is None:
-        return None
-    values, problem = parse_numbers(limit.get(key), 1)
-    return None if problem else values[0]
-
-
 @rule("U816", "moveit-limits-exceed-urdf", Severity.ERROR)
 @as_moveit_runs
 def moveit_limits_exceed_urdf(robot):
@@ -268,7 +253,7 @@ def moveit_limits_exceed_urdf(robot):
         if joint.get("type") in LIMITED:
             checks += [("max_position", "upper", 1), ("min_position", "lower", -1)]
         for key, attribute, sign in checks:
-            mine, urdf = entry.values.get(key), _urdf_limit(joint, attribute)
+            mine, urdf = entry.values.get(key), limit_value(joint, attribute)
             if mine is None or urdf is None or attribute in ("velocity", "effort") and urdf <= 0:
                 continue
             if sign * (mine - urdf) > TOLERANCE * max(1.0, abs(urdf)) and not _rounded(mine, urdf):

@@ -17,7 +17,7 @@ from urdftool.numbers import decimal_slip, number
 from urdftool.description.actuation import moving_joints
 from urdftool.errors import available
 from urdftool.description.urdf import MOVING
-from urdftool.description.values import limit_bound, parse_numbers
+from urdftool.description.values import limit_value
 from urdftool.records import Record
 
 UNITS = {"deg": math.pi / 180, "rad": 1.0}
@@ -174,19 +174,6 @@ def spec_joint_missing(robot):
                                            + available('joints', joint.name, robot.joints))
 
 
-def _limit(joint, attribute):
-    """The URDF's ``attribute`` of a revolute or prismatic joint's ``<limit>``, None without
-    one: a bound as urdfdom reads it (:func:`~urdftool.description.values.limit_bound`, 0 when
-    not written), an effort or velocity when written."""
-    limit = joint.find("limit")
-    if limit is None:
-        return None
-    if attribute in ("lower", "upper"):
-        return limit_bound(limit, attribute)
-    values, _ = parse_numbers(limit.get(attribute), 1)
-    return values[0] if values else None
-
-
 @rule("U703", "limit-outside-spec", Severity.ERROR)
 def limit_outside_spec(robot):
     """A URDF joint limit goes beyond the spec by more than its tolerance.
@@ -214,7 +201,7 @@ def limit_outside_spec(robot):
                               f"spec limits it to {entry.entry['lower']:g} .. {entry.entry['upper']:g} "
                               f"{unit}; make it revolute with those limits")
         for key, sign in (() if joint.get("type") == "continuous" else (("lower", -1), ("upper", 1))):
-            value = _limit(joint, key)
+            value = limit_value(joint, key)
             if value is None:
                 continue
             urdf = value / scale if joint.get("type") == "revolute" else value
@@ -226,7 +213,7 @@ def limit_outside_spec(robot):
                               f"(tolerance {tolerance:g} {unit})"
                               + decimal_slip(sign * urdf, sign * entry.entry[key]))
         for key in ("effort", "velocity"):
-            value, allowed = _limit(joint, key), entry.entry.get(key)
+            value, allowed = limit_value(joint, key), entry.entry.get(key)
             if value is not None and allowed is not None and value > allowed * (1 + SI_TOLERANCE):
                 yield where, (f"joint '{entry.name}': {key} limit {value:g} exceeds the spec's "
                               f"{allowed:g} by {number(value - allowed)}"
@@ -302,7 +289,7 @@ def limit_spec_degree_slip(robot):
         joint = robot.joints.get(entry.name)
         if joint is None or joint.get("type") != "revolute":
             continue
-        bounds = [_limit(joint, key) for key in ("lower", "upper")]
+        bounds = [limit_value(joint, key) for key in ("lower", "upper")]
         if None in bounds:
             continue
         urdf = [value / UNITS[unit] for value in bounds]  # in the spec's unit
